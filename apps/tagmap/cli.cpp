@@ -1,0 +1,72 @@
+#include "cli.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace tagmap::cli
+{
+std::string Args::get(const std::string& opt, const std::string& def) const
+{
+	auto it = options.find(opt);
+	return it == options.end() ? def : it->second;
+}
+
+double Args::getDouble(const std::string& opt, double def) const
+{
+	auto it = options.find(opt);
+	if (it == options.end()) return def;
+	char* end = nullptr;
+	const double v = std::strtod(it->second.c_str(), &end);
+	if (it->second.empty() || *end != '\0' || !std::isfinite(v))
+		throw UsageError(opt + ": '" + it->second + "' is not a number");
+	return v;
+}
+
+long Args::getInt(const std::string& opt, long def) const
+{
+	auto it = options.find(opt);
+	if (it == options.end()) return def;
+	char* end = nullptr;
+	const long v = std::strtol(it->second.c_str(), &end, 10);
+	if (it->second.empty() || *end != '\0') throw UsageError(opt + ": '" + it->second + "' is not an integer");
+	return v;
+}
+
+Args parse(int argc, char** argv, int first, const std::set<std::string>& valueOptions,
+		   const std::set<std::string>& switchOptions)
+{
+	Args a;
+	for (int i = first; i < argc; i++)
+	{
+		std::string s = argv[i];
+		if (s.size() > 2 && s.rfind("--", 0) == 0)
+		{
+			std::string value;
+			const auto eq = s.find('=');
+			const bool inlineValue = eq != std::string::npos;
+			if (inlineValue)
+			{
+				value = s.substr(eq + 1);
+				s = s.substr(0, eq);
+			}
+			if (valueOptions.count(s))
+			{
+				if (!inlineValue)
+				{
+					if (i + 1 >= argc) throw UsageError(s + " needs a value");
+					value = argv[++i];
+				}
+				a.options[s] = value;
+			}
+			else if (switchOptions.count(s) && !inlineValue)
+				a.switches.insert(s);
+			else
+				throw UsageError("unknown option " + s);
+		}
+		else
+			a.positional.push_back(s);
+	}
+	return a;
+}
+
+}  // namespace tagmap::cli

@@ -1,0 +1,37 @@
+// A tiny argument parser shared by the sub-commands: positional arguments,
+// "--flag value" options and boolean switches, with one-line errors.
+#pragma once
+
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tagmap::cli
+{
+class UsageError : public std::runtime_error
+{
+   public:
+	using std::runtime_error::runtime_error;
+};
+
+struct Args
+{
+	std::vector<std::string> positional;
+	std::map<std::string, std::string> options;  // "--json" -> "out.json"
+	std::set<std::string> switches;  // "--quiet"
+
+	bool has(const std::string& opt) const { return options.count(opt) || switches.count(opt); }
+	std::string get(const std::string& opt, const std::string& def = {}) const;
+	/** Parses a number; throws UsageError "--opt: 'x' is not a number". */
+	double getDouble(const std::string& opt, double def) const;
+	long getInt(const std::string& opt, long def) const;
+};
+
+/** `valueOptions` take a value; `switchOptions` do not. Unknown options
+ *  and missing values throw UsageError. */
+Args parse(int argc, char** argv, int first, const std::set<std::string>& valueOptions,
+		   const std::set<std::string>& switchOptions);
+
+}  // namespace tagmap::cli

@@ -1,0 +1,27 @@
+// Owning handles to libapriltag family objects and OpenCV ArUco
+// dictionaries, for code that talks to the decoders directly.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <opencv2/aruco.hpp>
+
+struct apriltag_family;
+
+namespace tagmap
+{
+using AprilTagFamilyPtr = std::unique_ptr<apriltag_family, void (*)(apriltag_family*)>;
+
+/** libapriltag family names, in the order tagmap tries them. */
+const std::vector<std::string>& aprilTagFamilyNames();
+
+/** A fresh family object (each detector needs its own: the detector keeps
+ *  decode tables inside it). Throws std::invalid_argument if unknown. */
+AprilTagFamilyPtr createAprilTagFamily(const std::string& name);
+
+/** OpenCV dictionary for an "aruco_*" family name. */
+cv::Ptr<cv::aruco::Dictionary> arucoDictionary(const std::string& name);
+
+}  // namespace tagmap

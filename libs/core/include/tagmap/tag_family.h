@@ -1,0 +1,62 @@
+// The fiducial families tagmap knows: their names (shared/CONVENTIONS.md),
+// their canonical bitmaps (from libapriltag and OpenCV, never drawn by hand)
+// and their geometry. Both the simulator (to print tags) and the decoder
+// stage (to read them) go through this one registry.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tagmap
+{
+enum class TagSystem
+{
+	AprilTag,  // decoded by libapriltag
+	ArUco  // decoded by OpenCV's aruco module
+};
+
+struct TagFamilyInfo
+{
+	std::string name;  // e.g. "tag36h11", "aruco_4x4_50"
+	TagSystem system = TagSystem::AprilTag;
+	int idCount = 0;  // number of valid ids
+	/** Edge of the black border square, in bits (cells). The tag size `s`
+	 *  is this edge in metres, so one cell is s / borderCells. */
+	int borderCells = 0;
+};
+
+/** Every family tagmap supports, AprilTag first. */
+const std::vector<TagFamilyInfo>& supportedFamilies();
+
+/** Family by name, or nullptr when unknown. */
+const TagFamilyInfo* findFamily(const std::string& name);
+
+/** "tag36h11, tag25h9, ..." for error messages. */
+std::string supportedFamilyList();
+
+/** Parses "tag36h11,aruco_4x4_50"; throws std::invalid_argument naming the
+ *  unknown family and listing the valid ones. Empty input means all. */
+std::vector<std::string> parseFamilyList(const std::string& commaSeparated);
+
+/**
+ * The printed pattern of one tag, upright (row 0 at the top), as a square
+ * grid of cells. Cells are 0 (black ink) or 255 (white paper). The grid
+ * includes one white quiet-zone cell around the family's own pattern, so
+ * a tag printed from it always decodes. The border square that defines the
+ * tag size spans cells [borderStart, borderStart + borderCells) on both axes.
+ */
+struct TagBitmap
+{
+	int cells = 0;  // grid is cells x cells
+	int borderStart = 0;
+	int borderCells = 0;
+	std::vector<uint8_t> pixels;  // row-major, cells*cells
+
+	uint8_t at(int row, int col) const { return pixels[row * cells + col]; }
+};
+
+/** Throws std::invalid_argument on an unknown family or out-of-range id. */
+TagBitmap renderTagBitmap(const std::string& family, int id);
+
+}  // namespace tagmap

@@ -1,0 +1,26 @@
+// The result file of shared/CONVENTIONS.md: {"tags": [...]} plus optional
+// extra top-level fields (scene metadata for ground truth, a report summary).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tagmap/tag_detection.h"
+
+namespace tagmap
+{
+/** Serialises tags to the CONVENTIONS JSON. `extraFields` is inserted as
+ *  further top-level members, e.g. "\"scene\": \"parking\"" (may be empty).
+ *  Output is deterministic: fixed key order and number formatting. */
+std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string& extraFields = {});
+
+/** Writes tagsToJson() atomically (temp file + rename). */
+void writeTagsJson(const std::string& path, const std::vector<TagDetection>& tags, const std::string& extraFields = {});
+
+/** Reads the `tags` list of a result or ground-truth file. Throws InputError. */
+std::vector<TagDetection> readTagsJson(const std::string& path);
+
+/** JSON string literal with escapes, including the quotes. */
+std::string jsonQuote(const std::string& s);
+
+}  // namespace tagmap

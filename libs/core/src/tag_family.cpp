@@ -1,0 +1,210 @@
+#include "tagmap/tag_family.h"
+
+#include <apriltag/apriltag.h>
+#include <apriltag/tag16h5.h>
+#include <apriltag/tag25h9.h>
+#include <apriltag/tag36h11.h>
+#include <apriltag/tagCircle21h7.h>
+#include <apriltag/tagCircle49h12.h>
+#include <apriltag/tagCustom48h12.h>
+#include <apriltag/tagStandard41h12.h>
+#include <apriltag/tagStandard52h13.h>
+
+#include <opencv2/aruco.hpp>
+
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "tagmap/apriltag_families.h"
+
+namespace tagmap
+{
+namespace
+{
+struct ArucoDictName
+{
+	const char* name;
+	int dict;
+	int idCount;
+	int dataBits;  // marker side in data bits (the border adds one on each side)
+};
+
+const ArucoDictName kArucoDicts[] = {
+	{"aruco_original", cv::aruco::DICT_ARUCO_ORIGINAL, 1024, 5},
+	{"aruco_4x4_50", cv::aruco::DICT_4X4_50, 50, 4},
+	{"aruco_4x4_100", cv::aruco::DICT_4X4_100, 100, 4},
+	{"aruco_4x4_250", cv::aruco::DICT_4X4_250, 250, 4},
+	{"aruco_4x4_1000", cv::aruco::DICT_4X4_1000, 1000, 4},
+	{"aruco_5x5_50", cv::aruco::DICT_5X5_50, 50, 5},
+	{"aruco_5x5_100", cv::aruco::DICT_5X5_100, 100, 5},
+	{"aruco_5x5_250", cv::aruco::DICT_5X5_250, 250, 5},
+	{"aruco_5x5_1000", cv::aruco::DICT_5X5_1000, 1000, 5},
+	{"aruco_6x6_50", cv::aruco::DICT_6X6_50, 50, 6},
+	{"aruco_6x6_100", cv::aruco::DICT_6X6_100, 100, 6},
+	{"aruco_6x6_250", cv::aruco::DICT_6X6_250, 250, 6},
+	{"aruco_6x6_1000", cv::aruco::DICT_6X6_1000, 1000, 6},
+	{"aruco_7x7_50", cv::aruco::DICT_7X7_50, 50, 7},
+	{"aruco_7x7_100", cv::aruco::DICT_7X7_100, 100, 7},
+	{"aruco_7x7_250", cv::aruco::DICT_7X7_250, 250, 7},
+	{"aruco_7x7_1000", cv::aruco::DICT_7X7_1000, 1000, 7},
+};
+
+std::vector<TagFamilyInfo> buildRegistry()
+{
+	std::vector<TagFamilyInfo> out;
+	for (const auto& name : aprilTagFamilyNames())
+	{
+		AprilTagFamilyPtr fam = createAprilTagFamily(name);
+		out.push_back({name, TagSystem::AprilTag, static_cast<int>(fam->ncodes),
+					   fam->width_at_border});
+	}
+	for (const auto& d : kArucoDicts)
+		out.push_back({d.name, TagSystem::ArUco, d.idCount, d.dataBits + 2});
+	return out;
+}
+
+const ArucoDictName& arucoDict(const std::string& name)
+{
+	for (const auto& d : kArucoDicts)
+		if (name == d.name) return d;
+	throw std::invalid_argument("unknown ArUco dictionary '" + name + "'");
+}
+
+}  // namespace
+
+// ---- AprilTag family objects (shared with the decoder stage) -------------
+
+const std::vector<std::string>& aprilTagFamilyNames()
+{
+	static const std::vector<std::string> names = {
+		"tag36h11",		 "tag25h9",		  "tag16h5",	   "tagStandard41h12",
+		"tagStandard52h13", "tagCircle21h7", "tagCircle49h12", "tagCustom48h12"};
+	return names;
+}
+
+AprilTagFamilyPtr createAprilTagFamily(const std::string& name)
+{
+	using Ctor = apriltag_family_t* (*)();
+	using Dtor = void (*)(apriltag_family_t*);
+	struct Entry
+	{
+		const char* name;
+		Ctor create;
+		Dtor destroy;
+	};
+	static const Entry entries[] = {
+		{"tag36h11", tag36h11_create, tag36h11_destroy},
+		{"tag25h9", tag25h9_create, tag25h9_destroy},
+		{"tag16h5", tag16h5_create, tag16h5_destroy},
+		{"tagStandard41h12", tagStandard41h12_create, tagStandard41h12_destroy},
+		{"tagStandard52h13", tagStandard52h13_create, tagStandard52h13_destroy},
+		{"tagCircle21h7", tagCircle21h7_create, tagCircle21h7_destroy},
+		{"tagCircle49h12", tagCircle49h12_create, tagCircle49h12_destroy},
+		{"tagCustom48h12", tagCustom48h12_create, tagCustom48h12_destroy},
+	};
+	for (const auto& e : entries)
+		if (name == e.name) return AprilTagFamilyPtr(e.create(), e.destroy);
+	throw std::invalid_argument("unknown AprilTag family '" + name + "'");
+}
+
+cv::Ptr<cv::aruco::Dictionary> arucoDictionary(const std::string& name)
+{
+	return cv::aruco::getPredefinedDictionary(arucoDict(name).dict);
+}
+
+// ---- registry -----------------------------------------------------------
+
+const std::vector<TagFamilyInfo>& supportedFamilies()
+{
+	static const std::vector<TagFamilyInfo> registry = buildRegistry();
+	return registry;
+}
+
+const TagFamilyInfo* findFamily(const std::string& name)
+{
+	for (const auto& f : supportedFamilies())
+		if (f.name == name) return &f;
+	return nullptr;
+}
+
+std::string supportedFamilyList()
+{
+	std::string s;
+	for (const auto& f : supportedFamilies()) s += (s.empty() ? "" : ", ") + f.name;
+	return s;
+}
+
+std::vector<std::string> parseFamilyList(const std::string& commaSeparated)
+{
+	std::vector<std::string> out;
+	std::stringstream ss(commaSeparated);
+	std::string item;
+	while (std::getline(ss, item, ','))
+	{
+		if (item.empty()) continue;
+		if (!findFamily(item))
+			throw std::invalid_argument(
+				"unknown tag family '" + item + "'; valid families: " + supportedFamilyList());
+		out.push_back(item);
+	}
+	if (out.empty())
+		for (const auto& f : supportedFamilies()) out.push_back(f.name);
+	return out;
+}
+
+// ---- bitmaps --------------------------------------------------------------
+
+TagBitmap renderTagBitmap(const std::string& family, int id)
+{
+	const TagFamilyInfo* info = findFamily(family);
+	if (!info)
+		throw std::invalid_argument(
+			"unknown tag family '" + family + "'; valid families: " + supportedFamilyList());
+	if (id < 0 || id >= info->idCount)
+		throw std::invalid_argument(
+			"tag id " + std::to_string(id) + " is out of range for " + family + " (0.." +
+			std::to_string(info->idCount - 1) + ")");
+
+	// Family pattern as the library draws it, 1 pixel per cell, 0/255.
+	std::vector<uint8_t> core;
+	int coreCells = 0, coreBorderStart = 0;
+	if (info->system == TagSystem::AprilTag)
+	{
+		AprilTagFamilyPtr fam = createAprilTagFamily(family);
+		image_u8_t* im = apriltag_to_image(fam.get(), id);
+		coreCells = im->width;
+		core.resize(coreCells * coreCells);
+		for (int r = 0; r < coreCells; r++)
+			for (int c = 0; c < coreCells; c++)
+				core[r * coreCells + c] = im->buf[r * im->stride + c] ? 255 : 0;
+		// libapriltag.so does not export image_u8_destroy; it is exactly these two frees.
+		free(im->buf);
+		free(im);
+		coreBorderStart = (fam->total_width - fam->width_at_border) / 2;
+	}
+	else
+	{
+		const int cellsAcross = info->borderCells;  // data bits + black border
+		cv::Mat img;
+		cv::aruco::drawMarker(arucoDictionary(family), id, cellsAcross, img, 1);
+		coreCells = cellsAcross;
+		core.resize(coreCells * coreCells);
+		for (int r = 0; r < coreCells; r++)
+			for (int c = 0; c < coreCells; c++) core[r * coreCells + c] = img.at<uint8_t>(r, c) > 127 ? 255 : 0;
+		coreBorderStart = 0;
+	}
+
+	// One white quiet-zone cell around the family's own drawing.
+	TagBitmap bm;
+	bm.cells = coreCells + 2;
+	bm.borderStart = coreBorderStart + 1;
+	bm.borderCells = info->borderCells;
+	bm.pixels.assign(bm.cells * bm.cells, 255);
+	for (int r = 0; r < coreCells; r++)
+		for (int c = 0; c < coreCells; c++) bm.pixels[(r + 1) * bm.cells + (c + 1)] = core[r * coreCells + c];
+	return bm;
+}
+
+}  // namespace tagmap

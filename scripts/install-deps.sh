@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs every build and test dependency of tagmap from Debian packages.
+# Idempotent: re-running it when everything is present is quick and harmless.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config
+  libmrpt-dev mrpt-apps
+  libeigen3-dev
+  libopencv-dev libopencv-contrib-dev
+  libapriltag-dev
+  liboctomap-dev
+  libgtest-dev googletest
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages already installed"
+  exit 0
+fi
+
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" </dev/null

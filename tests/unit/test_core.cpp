@@ -1,0 +1,97 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "tagmap/atomic_file.h"
+#include "tagmap/tag_family.h"
+#include "tagmap/tags_json.h"
+
+using namespace tagmap;
+
+TEST(TagFamily, RegistryHasConventionNames)
+{
+	for (const char* n : {"tag36h11", "tag25h9", "tag16h5", "tagStandard41h12", "tagStandard52h13", "tagCircle21h7",
+						  "tagCircle49h12", "tagCustom48h12", "aruco_original", "aruco_4x4_50", "aruco_6x6_250"})
+		EXPECT_NE(findFamily(n), nullptr) << n;
+	EXPECT_EQ(findFamily("tag36h10"), nullptr);
+	EXPECT_EQ(findFamily("tag36h11")->borderCells, 8);
+	EXPECT_EQ(findFamily("aruco_4x4_50")->borderCells, 6);
+	EXPECT_EQ(findFamily("tagStandard41h12")->borderCells, 5);
+}
+
+TEST(TagFamily, UnknownFamilyListsValidOnes)
+{
+	try
+	{
+		parseFamilyList("tag36h11,bogus");
+		FAIL();
+	}
+	catch (const std::invalid_argument& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("bogus"), std::string::npos);
+		EXPECT_NE(std::string(e.what()).find("aruco_4x4_50"), std::string::npos);
+	}
+}
+
+TEST(TagFamily, BitmapHasBlackBorderAndQuietZone)
+{
+	for (const char* n : {"tag36h11", "aruco_4x4_50"})
+	{
+		TagBitmap bm = renderTagBitmap(n, 3);
+		const int b0 = bm.borderStart, b1 = bm.borderStart + bm.borderCells - 1;
+		for (int k = b0; k <= b1; k++)
+		{
+			EXPECT_EQ(bm.at(b0, k), 0) << n;  // top border row is black
+			EXPECT_EQ(bm.at(k, b1), 0) << n;  // right border column is black
+		}
+		for (int k = 0; k < bm.cells; k++) EXPECT_EQ(bm.at(0, k), 255) << n;  // quiet zone is white
+	}
+	EXPECT_THROW(renderTagBitmap("tag36h11", 100000), std::invalid_argument);
+}
+
+TEST(TagDetection, PoseFromCornersRoundTrip)
+{
+	Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+	T.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+	T.translation() = Eigen::Vector3d(1, -2, 3);
+	const auto c = cornersFromPose(T, 0.2);
+	const Eigen::Isometry3d back = poseFromCorners(c);
+	EXPECT_LT((back.matrix() - T.matrix()).norm(), 1e-9);
+}
+
+TEST(TagsJson, WriteReadRoundTrip)
+{
+	TagDetection d;
+	d.family = "tag36h11";
+	d.id = 7;
+	d.size = 0.164;
+	d.pose.translation() = Eigen::Vector3d(1, 2, 3);
+	d.corners = cornersFromPose(d.pose, d.size);
+	const auto path = (std::filesystem::temp_directory_path() / "tagmap_test_rt.json").string();
+	writeTagsJson(path, {d}, "\"scene\": \"x\"");
+	const auto back = readTagsJson(path);
+	ASSERT_EQ(back.size(), 1u);
+	EXPECT_EQ(back[0].family, "tag36h11");
+	EXPECT_EQ(back[0].id, 7);
+	EXPECT_NEAR(back[0].corners[2].x(), d.corners[2].x(), 1e-6);
+	EXPECT_EQ(tagsToJson({}), "{\n  \"tags\": []\n}\n");
+}
+
+TEST(AtomicFile, FailedWriteLeavesOldFileUntouched)
+{
+	const auto path = (std::filesystem::temp_directory_path() / "tagmap_test_atomic.txt").string();
+	writeFileAtomically(path, [](std::ostream& o) { o << "good"; });
+	EXPECT_THROW(writeFileAtomically(path,
+									 [](std::ostream& o) {
+										 o << "half";
+										 throw std::runtime_error("killed");
+									 }),
+				 std::runtime_error);
+	std::ifstream in(path);
+	std::string s;
+	in >> s;
+	EXPECT_EQ(s, "good");
+	for (const auto& e : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
+		EXPECT_EQ(e.path().filename().string().find("tagmap_test_atomic.txt.tmp"), std::string::npos);
+}
