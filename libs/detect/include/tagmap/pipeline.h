@@ -1,0 +1,64 @@
+// The detection pipeline: a CPointsMapXYZI in, tags with IDs, indexed
+// vertices and 6-DoF poses out. It wires the stages (one file each, in this
+// folder) and reports per-stage timings and counts.
+//
+//   mrpt::maps::CPointsMapXYZI map = tagmap::io::loadPointCloud("site.pcd");
+//   tagmap::Pipeline pipeline(tagmap::PipelineParams::fromYamlFile("share/config/default.yaml"));
+//   tagmap::Detections found = pipeline.detect(map);
+#pragma once
+
+#include <mrpt/containers/yaml.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tagmap/pipeline_params.h"
+#include "tagmap/tag_detection.h"
+
+namespace tagmap
+{
+struct StageReport
+{
+	std::string name;  // "intensity_gradient", "clustering", ...
+	double seconds = 0;
+	size_t itemsIn = 0;  // points or clusters in
+	size_t itemsOut = 0;  // points or clusters out
+};
+
+/** What happened to one candidate cluster (for reports and debugging). */
+struct CandidateReport
+{
+	Eigen::Vector3d center = Eigen::Vector3d::Zero();
+	Eigen::Vector3d extent = Eigen::Vector3d::Zero();  // OBB l, w, h
+	size_t clusterPoints = 0;
+	size_t gatheredPoints = 0;
+	std::string verdict;  // "decoded", "size", "squareness", "no_decode", "duplicate", ...
+};
+
+struct Detections
+{
+	std::vector<TagDetection> tags;  // sorted by family, then id
+	std::vector<StageReport> stages;
+	std::vector<CandidateReport> candidates;
+	double totalSeconds = 0;
+};
+
+/** Progress callback: stage name, items done, items total. */
+using ProgressFn = std::function<void(const std::string& stage, size_t done, size_t total)>;
+
+class Pipeline
+{
+   public:
+	explicit Pipeline(PipelineParams params = {});
+	const PipelineParams& params() const { return params_; }
+
+	/** Finds every tag in `map` (coordinates in the map frame {G}). */
+	Detections detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress = {}) const;
+
+   private:
+	PipelineParams params_;
+};
+
+}  // namespace tagmap

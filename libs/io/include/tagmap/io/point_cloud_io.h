@@ -1,0 +1,36 @@
+// Reading the maps users have into mrpt::maps::CPointsMapXYZI, and writing
+// binary PCD. The format is chosen from the file extension:
+//   .pcd (ascii, binary, binary_compressed), .ply (ascii, binary LE),
+//   .bin (KITTI x y z i float32), .xyzi / .txt / .xyz (plain text "x y z i"),
+//   .simplemap (MRPT keyframes merged at their poses).
+// Every malformed input throws tagmap::InputError with a one-line message
+// "<file>: <place>: <what>", never crashes and never allocates what a header
+// merely claims.
+#pragma once
+
+#include <mrpt/maps/CPointsMapXYZI.h>
+
+#include <cstddef>
+#include <string>
+
+namespace tagmap::io
+{
+struct LoadReport
+{
+	std::string format;  // "pcd-binary", "ply-ascii", "kitti", "simplemap", ...
+	std::string intensityField;  // name of the field the intensity came from
+	size_t pointsRead = 0;  // points in the file
+	size_t pointsKept = 0;  // finite points put into the map
+	size_t nonFiniteSkipped = 0;  // NaN/Inf coordinates or intensity
+};
+
+/** Loads any supported file into `out` (cleared first). Throws InputError. */
+void loadPointCloud(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport* report = nullptr);
+
+/** Convenience form of the above. */
+mrpt::maps::CPointsMapXYZI loadPointCloud(const std::string& path, LoadReport* report = nullptr);
+
+/** Writes a binary PCD v0.7 (FIELDS x y z intensity, F4) atomically. */
+void savePcdBinary(const std::string& path, const mrpt::maps::CPointsMapXYZI& map);
+
+}  // namespace tagmap::io
