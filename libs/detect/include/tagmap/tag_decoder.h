@@ -1,0 +1,58 @@
+// Stage: decoding an intensity image with the real fiducial decoders
+// (libapriltag for AprilTag families, OpenCV aruco for ArUco dictionaries),
+// on the image as rendered and on its mirror image: the box a candidate was
+// rendered from has no preferred side, so the tag may be seen from "behind".
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace tagmap
+{
+struct DecodedTag2D
+{
+	std::string family;
+	int id = -1;
+	/** Pixel coordinates, x right, y down, with pixel (c, r) covering
+	 *  [c, c+1) x [r, r+1); vertex-index order (TL, TR, BR, BL of the
+	 *  upright pattern), already mapped back to the unmirrored image. */
+	std::array<Eigen::Vector2d, 4> corners;
+	double margin = 0;  // libapriltag decision margin; for ArUco a fixed 100
+	int hamming = 0;  // bits corrected (AprilTag only)
+	bool mirrored = false;  // found on the mirrored image
+};
+
+struct TagDecoderParams
+{
+	bool tryMirrored = true;
+	/** Bits corrected per AprilTag family. Families with tens of thousands
+	 *  of codes get 1: their 2-bit decode tables take gigabytes. */
+	int maxBitsCorrected = 2;
+	/** Reject AprilTag decodes below this decision margin (libapriltag's
+	 *  contrast measure; the image is contrast-normalised, so it is scale free). */
+	double minDecisionMargin = 25;
+};
+
+class TagDecoder
+{
+   public:
+	/** `families`: names from supportedFamilies(). Not thread-safe: use one
+	 *  decoder per thread (libapriltag keeps scratch state in the detector). */
+	explicit TagDecoder(const std::vector<std::string>& families, TagDecoderParams params = {});
+	~TagDecoder();
+	TagDecoder(const TagDecoder&) = delete;
+	TagDecoder& operator=(const TagDecoder&) = delete;
+
+	/** All tags in an 8-bit grey image (black ink dark), raw then mirrored. */
+	std::vector<DecodedTag2D> decode(const cv::Mat& gray8) const;
+
+   private:
+	struct Impl;
+	std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tagmap

@@ -1,0 +1,1 @@
+tagmap_test(test_tag_decoder SOURCES unit/test_tag_decoder.cpp LIBS tagmap_detect)
