@@ -22,7 +22,14 @@ struct LoadReport
 	size_t pointsRead = 0;  // points in the file
 	size_t pointsKept = 0;  // finite points put into the map
 	size_t nonFiniteSkipped = 0;  // NaN/Inf coordinates or intensity
+	// .simplemap (and later rawlogs): observations merged into the map, and
+	// observations passed over because they carry no usable intensity.
+	size_t observationsUsed = 0;
+	size_t observationsSkipped = 0;
 };
+
+/** The extensions loadPointCloud() understands, for messages and --help. */
+const char* supportedExtensions();
 
 /** Loads any supported file into `out` (cleared first). Throws InputError. */
 void loadPointCloud(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport* report = nullptr);

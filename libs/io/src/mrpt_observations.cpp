@@ -1,0 +1,117 @@
+#include "tagmap/io/mrpt_observations.h"
+
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+
+#include "reader_common.h"
+
+namespace tagmap::io
+{
+namespace
+{
+using detail::MapFiller;
+
+/** robotPose (+) sensorPose as plain numbers, so the per-point transform
+ *  stays inline instead of a CPose3D call per point. */
+class RigidTransform
+{
+   public:
+	explicit RigidTransform(const mrpt::poses::CPose3D& pose)
+	{
+		const auto& R = pose.getRotationMatrix();
+		for (int r = 0; r < 3; ++r)
+			for (int c = 0; c < 3; ++c) R_[r][c] = R(r, c);
+		t_[0] = pose.x();
+		t_[1] = pose.y();
+		t_[2] = pose.z();
+	}
+
+	void add(float x, float y, float z, float intensity, MapFiller& fill) const
+	{
+		double g[3];
+		for (int r = 0; r < 3; ++r) g[r] = t_[r] + R_[r][0] * x + R_[r][1] * y + R_[r][2] * z;
+		fill.add(static_cast<float>(g[0]), static_cast<float>(g[1]), static_cast<float>(g[2]), intensity);
+	}
+
+   private:
+	double R_[3][3];
+	double t_[3];
+};
+
+bool appendPointCloud(const mrpt::obs::CObservationPointCloud& o, const mrpt::poses::CPose3D& robotPose, mrpt::maps::CPointsMapXYZI& out,
+					  LoadReport& report)
+{
+	o.load();  // externally stored clouds are read on demand
+	const auto* cloud = dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(o.pointcloud.get());
+	if (!cloud) return false;
+	const RigidTransform T(robotPose + o.sensorPose);
+	const auto& xs = cloud->getPointsBufferRef_x();
+	const auto& ys = cloud->getPointsBufferRef_y();
+	const auto& zs = cloud->getPointsBufferRef_z();
+	const auto& is = cloud->getPointsBufferRef_intensity();
+	MapFiller fill(out, report);
+	fill.expect(xs.size());
+	for (size_t k = 0; k < xs.size(); ++k) T.add(xs[k], ys[k], zs[k], is[k], fill);
+	fill.finish();
+	return true;
+}
+
+bool appendVelodyne(const mrpt::obs::CObservationVelodyneScan& o, const mrpt::poses::CPose3D& robotPose, mrpt::maps::CPointsMapXYZI& out,
+					LoadReport& report)
+{
+	const mrpt::obs::CObservationVelodyneScan::TPointCloud* pc = &o.point_cloud;
+	// Recorded scans usually keep only the raw packets; decode a copy rather
+	// than touching the caller's observation.
+	mrpt::obs::CObservationVelodyneScan decoded;
+	if (pc->size() == 0 && !o.scan_packets.empty())
+	{
+		decoded = o;
+		decoded.generatePointCloud();
+		pc = &decoded.point_cloud;
+	}
+	if (pc->intensity.size() != pc->size() || pc->y.size() != pc->size() || pc->z.size() != pc->size()) return false;
+	const RigidTransform T(robotPose + o.sensorPose);
+	MapFiller fill(out, report);
+	fill.expect(pc->size());
+	for (size_t k = 0; k < pc->size(); ++k) T.add(pc->x[k], pc->y[k], pc->z[k], pc->intensity[k], fill);
+	fill.finish();
+	return true;
+}
+
+bool append3DRangeScan(const mrpt::obs::CObservation3DRangeScan& o, const mrpt::poses::CPose3D& robotPose, mrpt::maps::CPointsMapXYZI& out,
+					   LoadReport& report)
+{
+	o.load();
+	if (!o.hasRangeImage || !o.hasIntensityImage) return false;
+	// MRPT's own unprojection knows the camera model and the intensity image
+	// layout; it already applies robotPose (+) sensorPose.
+	mrpt::maps::CPointsMapXYZI local;
+	local.loadFromRangeScan(o, robotPose);
+	const auto& xs = local.getPointsBufferRef_x();
+	const auto& ys = local.getPointsBufferRef_y();
+	const auto& zs = local.getPointsBufferRef_z();
+	const auto& is = local.getPointsBufferRef_intensity();
+	MapFiller fill(out, report);
+	fill.expect(xs.size());
+	for (size_t k = 0; k < xs.size(); ++k) fill.add(xs[k], ys[k], zs[k], is[k]);
+	fill.finish();
+	return true;
+}
+
+}  // namespace
+
+bool appendObservationToMap(const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose, mrpt::maps::CPointsMapXYZI& out,
+							LoadReport& report)
+{
+	bool used = false;
+	if (const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs)) used = appendPointCloud(*pc, robotPose, out, report);
+	else if (const auto* velo = dynamic_cast<const mrpt::obs::CObservationVelodyneScan*>(&obs))
+		used = appendVelodyne(*velo, robotPose, out, report);
+	else if (const auto* rgbd = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs))
+		used = append3DRangeScan(*rgbd, robotPose, out, report);
+	++(used ? report.observationsUsed : report.observationsSkipped);
+	return used;
+}
+
+}  // namespace tagmap::io
