@@ -83,18 +83,31 @@ bool append3DRangeScan(const mrpt::obs::CObservation3DRangeScan& o, const mrpt::
 					   LoadReport& report)
 {
 	o.load();
-	if (!o.hasRangeImage || !o.hasIntensityImage) return false;
-	// MRPT's own unprojection knows the camera model and the intensity image
-	// layout; it already applies robotPose (+) sensorPose.
-	mrpt::maps::CPointsMapXYZI local;
-	local.loadFromRangeScan(o, robotPose);
-	const auto& xs = local.getPointsBufferRef_x();
-	const auto& ys = local.getPointsBufferRef_y();
-	const auto& zs = local.getPointsBufferRef_z();
-	const auto& is = local.getPointsBufferRef_intensity();
+	if (!o.hasIntensityImage || !(o.hasPoints3D || o.hasRangeImage)) return false;
+	// MRPT knows the camera model, so it unprojects (into the sensor frame);
+	// but its loadFromRangeScan() leaves XYZI intensity at 1, so the
+	// intensity image is sampled here at each point's pixel.
+	const mrpt::obs::CObservation3DRangeScan* src = &o;
+	mrpt::obs::CObservation3DRangeScan unprojected;
+	if (!o.hasPoints3D)
+	{
+		unprojected = o;
+		unprojected.unprojectInto(unprojected);
+		src = &unprojected;
+	}
+	const size_t n = src->points3D_x.size();
+	if (src->points3D_idxs_x.size() != n || src->points3D_idxs_y.size() != n) return false;
+	const mrpt::img::CImage gray(src->intensityImage, mrpt::img::FAST_REF_OR_CONVERT_TO_GRAY);
+	const size_t w = gray.getWidth(), h = gray.getHeight();
+	const RigidTransform T(robotPose + src->sensorPose);
 	MapFiller fill(out, report);
-	fill.expect(xs.size());
-	for (size_t k = 0; k < xs.size(); ++k) fill.add(xs[k], ys[k], zs[k], is[k]);
+	fill.expect(n);
+	for (size_t k = 0; k < n; ++k)
+	{
+		const size_t c = src->points3D_idxs_x[k], r = src->points3D_idxs_y[k];
+		const float intensity = c < w && r < h ? gray.at<uint8_t>(static_cast<unsigned>(c), static_cast<unsigned>(r)) : std::nanf("");
+		T.add(src->points3D_x[k], src->points3D_y[k], src->points3D_z[k], intensity, fill);
+	}
 	fill.finish();
 	return true;
 }

@@ -16,7 +16,8 @@ namespace tagmap::io
  * Understood: CObservationPointCloud holding a CPointsMapXYZI,
  * CObservationVelodyneScan (its point_cloud, generated from the raw packets
  * when empty; intensity 0..255), CObservation3DRangeScan with a range and an
- * intensity image (intensity 0..1, as MRPT unprojects it).
+ * intensity image (intensity 0..255, the gray level at the point's
+ * pixel; points outside the intensity image count as non-finite).
  * CObservationRotatingScan is not: MRPT 2.5.8 stores no per-ring elevation
  * for it, so its range image cannot be turned into 3D points.
  * Returns false (and adds nothing) for observations without usable
