@@ -1,12 +1,87 @@
+// `tagmap simulate SCENE.yaml --out DIR [...]`: a thin shell over tagmap_sim.
 #include <iostream>
 
+#include "cli.h"
 #include "commands.h"
+#include "tagmap/errors.h"
+#include "tagmap/sim/scene_loader.h"
+#include "tagmap/sim/sim_outputs.h"
+#include "tagmap/sim/simulate.h"
 
 namespace tagmap::app
 {
-int runSimulate(int, char**)
+namespace
 {
-	std::cerr << "tagmap simulate: not implemented yet\n";
-	return 1;
+const char* kUsage =
+	"Usage: tagmap simulate SCENE.yaml --out DIR [--seed N] [--intensity-scale 1|255|65535]\n"
+	"                       [--points N] [--param NAME=VALUE] [--threads N] [--simplemap]\n"
+	"Simulates LiDAR scans of a YAML scene and writes DIR/map.pcd and DIR/ground_truth.json;\n"
+	"with --simplemap also DIR/scans.simplemap, DIR/trajectory_true.tum, DIR/trajectory_drifted.tum.\n"
+	"  --points N        rescale the sensors' density for a map of about N points\n"
+	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml)\n";
+
+sim::SceneParameters parseParam(const std::string& s)
+{
+	const auto eq = s.find('=');
+	if (eq == std::string::npos || eq == 0) throw cli::UsageError("--param: expected NAME=VALUE, got '" + s + "'");
+	cli::Args tmp;
+	tmp.options["--param"] = s.substr(eq + 1);
+	return {{s.substr(0, eq), tmp.getDouble("--param", 0)}};
+}
+}  // namespace
+
+int runSimulate(int argc, char** argv)
+{
+	try
+	{
+		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads"},
+									   {"--simplemap", "--help"});
+		if (a.has("--help"))
+		{
+			std::cout << kUsage;
+			return 0;
+		}
+		if (a.positional.size() != 1 || !a.has("--out")) throw cli::UsageError("needs one SCENE.yaml and --out DIR");
+		sim::SimOptions opt;
+		const long seed = a.getInt("--seed", 1);
+		const long points = a.getInt("--points", 0);
+		const long threads = a.getInt("--threads", 0);
+		if (seed < 0) throw cli::UsageError("--seed must be >= 0");
+		if (points < 0) throw cli::UsageError("--points must be >= 0");
+		if (threads < 0) throw cli::UsageError("--threads must be >= 0");
+		opt.seed = static_cast<uint64_t>(seed);
+		opt.targetPoints = static_cast<size_t>(points);
+		opt.threads = static_cast<unsigned>(threads);
+		opt.intensityScale = a.getDouble("--intensity-scale", 1);
+		if (!(opt.intensityScale > 0)) throw cli::UsageError("--intensity-scale must be > 0");
+
+		const sim::Scene scene =
+			sim::loadScene(a.positional[0], a.has("--param") ? parseParam(a.get("--param")) : sim::SceneParameters{});
+		const sim::SimulationOutput out = sim::simulate(scene, opt);
+		sim::writeSimulationOutputs(a.get("--out"), out, {a.has("--simplemap"), opt.seed});
+
+		std::cout << "scene " << out.sceneName << ": " << out.map.size() << " points from " << out.frames.size()
+				  << " frames, " << out.truth.size() << " tags";
+		for (size_t i = 0; i < out.truth.size(); i++)
+			std::cout << (i ? ", " : " (") << out.truth[i].family << ":" << out.truth[i].id << " " << out.tagPoints[i]
+					  << " pts" << (i + 1 == out.truth.size() ? ")" : "");
+		std::cout << ", " << out.seconds << " s -> " << a.get("--out") << "\n";
+		return 0;
+	}
+	catch (const cli::UsageError& e)
+	{
+		std::cerr << "tagmap simulate: " << e.what() << "\n" << kUsage;
+		return 2;
+	}
+	catch (const InputError& e)
+	{
+		std::cerr << "tagmap simulate: " << e.what() << "\n";
+		return 1;
+	}
+	catch (const std::exception& e)
+	{
+		std::cerr << "tagmap simulate: error: " << e.what() << "\n";
+		return 1;
+	}
 }
 }  // namespace tagmap::app

@@ -1,0 +1,46 @@
+// What a LiDAR reports as intensity: the echo strength of a diffuse surface
+// (reflectivity x cos(incidence)^k), a residual range falloff left after the
+// sensor's own calibration, additive noise, clamped to 0..1. The output
+// scale (0..1, 0..255, 0..65535) is applied only when writing points, so
+// changing it never changes a ray or a noise draw.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "tagmap/sim/rng.h"
+#include "tagmap/sim/sensor_spec.h"
+
+namespace tagmap::sim
+{
+class IntensityModel
+{
+   public:
+	explicit IntensityModel(const IntensityParams& p) : p_(p) {}
+
+	/** Relative echo strength of one sub-ray on a surface, before range effects. */
+	double returnStrength(double reflectivity, double cosIncidence) const
+	{
+		return reflectivity * std::pow(std::max(0.0, cosIncidence), p_.incidenceExponent);
+	}
+
+	/** True if an echo of this strength at this range is detected at all. */
+	bool detected(double strength, double range) const { return strength * falloff(range) >= p_.detectionThreshold; }
+
+	/** Reported intensity in 0..1. `strength` is the footprint-averaged
+	 *  returnStrength() of the echo (missed sub-rays count as zero). */
+	double intensity(double strength, double range, Rng& rng) const
+	{
+		const double v = p_.gain * strength * falloff(range) + p_.noiseSigma * gaussian(rng);
+		return std::clamp(v, 0.0, 1.0);
+	}
+
+   private:
+	double falloff(double range) const
+	{
+		return std::pow(p_.rangeReference / std::max(range, p_.rangeReference), p_.rangeFalloffExponent);
+	}
+	IntensityParams p_;
+};
+
+}  // namespace tagmap::sim

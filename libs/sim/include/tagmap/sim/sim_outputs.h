@@ -1,0 +1,37 @@
+// Writing a simulation to disk: DIR/map.pcd (binary, via tagmap::io),
+// DIR/ground_truth.json (CONVENTIONS `tags` schema + scene metadata) and
+// optionally the SLAM-style keyframes DIR/scans.simplemap with
+// DIR/trajectory_true.tum and DIR/trajectory_drifted.tum.
+#pragma once
+
+#include <mrpt/maps/CSimpleMap.h>
+
+#include <cstdint>
+#include <string>
+
+#include "tagmap/sim/simulate.h"
+
+namespace tagmap::sim
+{
+struct WriteOptions
+{
+	bool simplemap = false;
+	uint64_t seed = 0;  // recorded in the metadata
+};
+
+/** Creates `dir` if needed; every file is written atomically. Throws InputError
+ *  if the folder is not writable. */
+void writeSimulationOutputs(const std::string& dir, const SimulationOutput& out, const WriteOptions& options);
+
+/** Extra top-level JSON fields describing the run (points, sensors, frames,
+ *  points per tag...), for writeTagsJson. */
+std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed);
+
+/** One keyframe per frame: a CObservationPointCloud whose CPointsMapXYZI is in
+ *  the sensor frame, at the frame's drifted pose (what a SLAM map holds). */
+mrpt::maps::CSimpleMap toSimpleMap(const SimulationOutput& out);
+
+/** "stamp tx ty tz qx qy qz qw" lines, one per frame. */
+std::string tumTrajectory(const SimulationOutput& out, bool drifted);
+
+}  // namespace tagmap::sim

@@ -1,0 +1,76 @@
+// The simulator's entry point: a Scene in, a merged LiDAR map, the per-frame
+// scans (true and drifted poses) and exact tag ground truth out.
+//
+//   auto scene = tagmap::sim::loadScene("share/scenes/accuracy.yaml", {{"tag_distance", 4.0}});
+//   tagmap::sim::SimOptions opt;
+//   opt.seed = 7;
+//   auto out = tagmap::sim::simulate(scene, opt);   // out.map, out.truth, out.frames
+#pragma once
+
+#include <mrpt/maps/CPointsMapXYZI.h>
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tagmap/sim/scene.h"
+#include "tagmap/tag_detection.h"
+
+namespace tagmap::sim
+{
+struct SimOptions
+{
+	uint64_t seed = 1;
+	/** Full-scale intensity of the output (1, 255, 65535...). Only multiplies
+	 *  the written intensities; rays and noise are identical for any value. */
+	double intensityScale = 1.0;
+	unsigned threads = 0;  // 0 = all hardware threads
+	/** > 0: rescale every sensor's density (grid step, point rate, columns)
+	 *  so the map has about this many points (measured by a pilot run). */
+	size_t targetPoints = 0;
+	/** Rays per work unit and random stream. Fixed, not derived from the
+	 *  thread count, so results are identical for any number of threads. */
+	size_t blockRays = 8192;
+};
+
+/** One simulated point in its frame (sensor frame at the frame's reference time). */
+struct SimPoint
+{
+	Eigen::Vector3f local;
+	float intensity01 = 0;  // before the output scale
+	int32_t object = -1;  // index into SimulationOutput::objectNames (-1: none)
+};
+
+struct FrameData
+{
+	int run = 0;
+	std::string runName, sensorName;
+	double time = 0;  // run-relative reference time of the frame, seconds
+	double stamp = 0;  // the same on the scene's single sensor clock (increasing over runs)
+	double duration = 0;
+	Eigen::Isometry3d truePose = Eigen::Isometry3d::Identity();  // world <- sensor
+	Eigen::Isometry3d driftedPose = Eigen::Isometry3d::Identity();  // as a SLAM map would have it
+	size_t firstPoint = 0, pointCount = 0;  // range in SimulationOutput::points
+};
+
+struct SimulationOutput
+{
+	std::string sceneName;
+	std::vector<std::string> sensorNames;
+	std::vector<std::string> objectNames;  // scene objects, then one paper per tag
+	std::vector<TagDetection> truth;  // printed faces in {G}, CONVENTIONS vertex order
+	std::vector<size_t> tagPoints;  // points whose echo came mostly from each tag's paper
+	std::vector<FrameData> frames;
+	std::vector<SimPoint> points;  // grouped by frame
+	/** All frames merged at their drifted poses, intensities x intensityScale. */
+	mrpt::maps::CPointsMapXYZI map;
+	double intensityScale = 1;
+	double densityFactor = 1;  // applied to the sensors (targetPoints)
+	size_t raysCast = 0;
+	double seconds = 0;
+};
+
+SimulationOutput simulate(const Scene& scene, const SimOptions& options = {});
+
+}  // namespace tagmap::sim

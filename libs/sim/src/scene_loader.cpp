@@ -1,0 +1,250 @@
+#include "tagmap/sim/scene_loader.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "scene_yaml_parts.h"
+#include "tagmap/errors.h"
+#include "tagmap/sim/distractor.h"
+#include "tagmap/tag_family.h"
+
+namespace tagmap::sim
+{
+namespace
+{
+std::set<std::string> withPose(std::set<std::string> keys)
+{
+	keys.insert(kPoseKeys.begin(), kPoseKeys.end());
+	return keys;
+}
+
+float reflectivity(const YamlReader& r, const std::string& key, double def)
+{
+	const double v = r.number(key, def);
+	if (v < 0 || v > 1) r.child(key).fail("reflectivity must be within 0..1");
+	return static_cast<float>(v);
+}
+
+Rect plainRect(const Eigen::Isometry3d& pose, double w, double h, float refl)
+{
+	Rect rect;
+	rect.pose = pose;
+	rect.halfW = 0.5 * w;
+	rect.halfH = 0.5 * h;
+	rect.texture.base = refl;
+	return rect;
+}
+
+SceneObject parseObject(const YamlReader& r)
+{
+	r.allowKeys(withPose({"name", "type", "size", "reflectivity"}));
+	SceneObject o;
+	o.name = r.text("name", r.path());
+	const std::string type = r.text("type");
+	const Eigen::Isometry3d pose = parsePose(r);
+	const float refl = reflectivity(r, "reflectivity", 0.5);
+	if (type == "plane")
+	{
+		const auto sz = r.numbers("size", 2);
+		if (sz[0] <= 0 || sz[1] <= 0) r.child("size").fail("width and height must be > 0");
+		o.kind = ObjectKind::Plane;
+		o.faces.push_back(plainRect(pose, sz[0], sz[1], refl));
+	}
+	else if (type == "box")
+	{
+		const Eigen::Vector3d sz = r.vec3("size");
+		if (sz.minCoeff() <= 0) r.child("size").fail("all three edges must be > 0");
+		o.kind = ObjectKind::Box;
+		// Six outward faces: for axis a, normal +-a, face spanned by the other two.
+		for (int a = 0; a < 3; a++)
+			for (int sgn : {-1, 1})
+			{
+				const int b = (a + 1) % 3, c = (a + 2) % 3;
+				Eigen::Matrix3d R;
+				R.col(0) = Eigen::Vector3d::Unit(b) * sgn;
+				R.col(1) = Eigen::Vector3d::Unit(c);
+				R.col(2) = Eigen::Vector3d::Unit(a) * sgn;
+				Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
+				local.linear() = R;
+				local.translation() = Eigen::Vector3d::Unit(a) * (0.5 * sgn * sz[a]);
+				o.faces.push_back(plainRect(pose * local, sz[b], sz[c], refl));
+			}
+	}
+	else
+		r.child("type").fail("unknown object type '" + type + "' (plane, box)");
+	return o;
+}
+
+SceneObject parseDistractor(const YamlReader& r)
+{
+	r.allowKeys(withPose({"name", "type", "size", "cell", "fill", "seed", "dark", "light"}));
+	DistractorSpec s;
+	s.name = r.text("name", r.path());
+	const std::string type = r.text("type");
+	if (type == "checkerboard")
+		s.kind = DistractorKind::Checkerboard;
+	else if (type == "random_blocks" || type == "poster")
+		s.kind = DistractorKind::RandomBlocks;
+	else if (type == "text")
+		s.kind = DistractorKind::Text;
+	else if (type == "stripes")
+		s.kind = DistractorKind::Stripes;
+	else
+		r.child("type").fail("unknown distractor type '" + type + "' (checkerboard, random_blocks, text, stripes)");
+	s.pose = parsePose(r);
+	const auto sz = r.numbers("size", 2);
+	if (sz[0] <= 0 || sz[1] <= 0) r.child("size").fail("width and height must be > 0");
+	s.width = sz[0];
+	s.height = sz[1];
+	s.cell = r.positive("cell", s.cell);
+	s.fill = r.number("fill", s.fill);
+	if (s.fill < 0 || s.fill > 1) r.child("fill").fail("must be within 0..1");
+	s.seed = static_cast<uint64_t>(r.integer("seed", 1));
+	s.dark = reflectivity(r, "dark", s.dark);
+	s.light = reflectivity(r, "light", s.light);
+	return makeDistractor(s);
+}
+
+TagSpec parseTag(const YamlReader& r)
+{
+	r.allowKeys(withPose({"family", "id", "size", "margin", "jitter_deg", "paper_offset", "black", "white"}));
+	TagSpec t;
+	t.family = r.text("family");
+	t.id = r.integer("id", 0);
+	if (!r.has("id")) r.fail("missing required key 'id'");
+	try
+	{
+		renderTagBitmap(t.family, t.id);  // validates family and id range
+	}
+	catch (const std::invalid_argument& e)
+	{
+		r.fail(e.what());
+	}
+	t.size = r.positive("size", 0);
+	t.pose = parsePose(r);
+	t.margin = r.positive("margin", t.margin, true);
+	t.jitterDeg = r.positive("jitter_deg", 0, true);
+	t.paperOffset = r.positive("paper_offset", t.paperOffset, true);
+	t.black = reflectivity(r, "black", t.black);
+	t.white = reflectivity(r, "white", t.white);
+	return t;
+}
+
+ScanRun parseRun(const YamlReader& r, const std::vector<SensorSpec>& sensors)
+{
+	r.allowKeys({"name", "sensor", "waypoints", "duration", "drift_scale", "deskew_residual"});
+	ScanRun run;
+	run.name = r.text("name", r.path());
+	const std::string sensor = r.text("sensor");
+	run.sensor = -1;
+	for (size_t i = 0; i < sensors.size(); i++)
+		if (sensors[i].name == sensor) run.sensor = static_cast<int>(i);
+	if (run.sensor < 0) r.child("sensor").fail("no sensor named '" + sensor + "' in 'sensors:'");
+	const auto wps = r.items("waypoints");
+	if (wps.empty()) r.fail("needs at least one entry in 'waypoints'");
+	for (size_t i = 0; i < wps.size(); i++)
+	{
+		wps[i].allowKeys(withPose({"t"}));
+		Waypoint w;
+		w.t = wps[i].number("t", static_cast<double>(i));
+		w.pose = parsePose(wps[i]);
+		if (i > 0 && !(w.t > run.waypoints.back().t)) wps[i].child("t").fail("waypoint times must increase");
+		run.waypoints.push_back(w);
+	}
+	run.duration = r.positive("duration", 0, true);
+	if (sensors[run.sensor].kind != SensorKind::Grid && run.waypoints.size() == 1 && run.duration <= 0)
+		r.fail("a single waypoint needs 'duration' > 0 (seconds of integration)");
+	run.driftScale = r.positive("drift_scale", 1, true);
+	run.deskewResidual = r.number("deskew_residual", 0);
+	if (run.deskewResidual < 0 || run.deskewResidual > 1) r.child("deskew_residual").fail("must be within 0..1");
+	return run;
+}
+
+DriftParams parseDrift(const YamlReader& r)
+{
+	r.allowKeys({"translation_per_sqrt_m", "rotation_deg_per_sqrt_m", "translation_per_sqrt_s",
+				 "rotation_deg_per_sqrt_s"});
+	DriftParams d;
+	d.translationPerSqrtM = r.positive("translation_per_sqrt_m", d.translationPerSqrtM, true);
+	d.rotationDegPerSqrtM = r.positive("rotation_deg_per_sqrt_m", d.rotationDegPerSqrtM, true);
+	d.translationPerSqrtS = r.positive("translation_per_sqrt_s", d.translationPerSqrtS, true);
+	d.rotationDegPerSqrtS = r.positive("rotation_deg_per_sqrt_s", d.rotationDegPerSqrtS, true);
+	return d;
+}
+
+Scene parseTree(const mrpt::containers::yaml& doc, const std::string& file, const SceneParameters& overrides)
+{
+	const auto& rootNode = doc.node();
+	std::map<std::string, double> params;
+	const std::map<std::string, double> none;
+	YamlReader root(rootNode, "", file, none);
+	if (!rootNode.isMap()) root.fail("a scene must be a YAML map (name, objects, tags, sensors, runs, ...)");
+	root.allowKeys({"name", "parameters", "drift", "objects", "distractors", "tags", "sensors", "runs"});
+	if (root.has("parameters"))
+	{
+		const YamlReader p = root.child("parameters");
+		for (const std::string& name : p.keys()) params[name] = p.number(name);
+	}
+	for (const auto& [name, value] : overrides)
+	{
+		if (!params.count(name)) root.fail("unknown parameter '" + name + "' (the scene declares none by that name)");
+		params[name] = value;
+	}
+
+	const YamlReader r(rootNode, "", file, params);
+	Scene s;
+	s.file = file;
+	s.name = r.text("name", "scene");
+	if (r.has("drift")) s.drift = parseDrift(r.child("drift"));
+	for (const auto& o : r.items("objects")) s.objects.push_back(parseObject(o));
+	for (const auto& d : r.items("distractors")) s.objects.push_back(parseDistractor(d));
+	for (const auto& t : r.items("tags")) s.tags.push_back(parseTag(t));
+	for (const auto& se : r.items("sensors"))
+	{
+		s.sensors.push_back(parseSensor(se));
+		for (size_t i = 0; i + 1 < s.sensors.size(); i++)
+			if (s.sensors[i].name == s.sensors.back().name) se.child("name").fail("duplicate sensor name");
+	}
+	for (const auto& ru : r.items("runs")) s.runs.push_back(parseRun(ru, s.sensors));
+	if (s.runs.empty()) r.fail("needs at least one entry in 'runs' (what scans the scene)");
+	return s;
+}
+
+mrpt::containers::yaml parseYaml(const std::string& text, const std::string& file)
+{
+	try
+	{
+		return mrpt::containers::yaml::FromText(text);
+	}
+	catch (const std::exception& e)
+	{
+		// MRPT messages span several lines; keep the first meaningful one.
+		std::string msg = e.what();
+		std::istringstream ss(msg);
+		std::string line, best;
+		while (std::getline(ss, line))
+			if (!line.empty() && line.find("==") == std::string::npos)
+			{
+				best = line;
+				if (line.find("line") != std::string::npos || line.find("rror") != std::string::npos) break;
+			}
+		throw InputError(file, "", "not valid YAML: " + best);
+	}
+}
+}  // namespace
+
+Scene parseScene(const std::string& yamlText, const std::string& sourceName, const SceneParameters& overrides)
+{
+	return parseTree(parseYaml(yamlText, sourceName), sourceName, overrides);
+}
+
+Scene loadScene(const std::string& path, const SceneParameters& overrides)
+{
+	std::ifstream in(path, std::ios::binary);
+	if (!in) throw InputError(path, "", "cannot open scene file");
+	std::stringstream ss;
+	ss << in.rdbuf();
+	return parseScene(ss.str(), path, overrides);
+}
+
+}  // namespace tagmap::sim

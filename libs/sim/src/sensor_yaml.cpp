@@ -1,0 +1,149 @@
+#include "scene_yaml_parts.h"
+
+namespace tagmap::sim
+{
+namespace
+{
+// Pairs like `range: [min, max]`, checked min < max.
+void readInterval(const YamlReader& r, const std::string& key, double& lo, double& hi)
+{
+	if (!r.has(key)) return;
+	const auto v = r.numbers(key, 2);
+	if (!(v[0] < v[1])) r.child(key).fail("needs [min, max] with min < max");
+	lo = v[0];
+	hi = v[1];
+}
+
+// Defaults that make each type a plausible real device without any options.
+SensorSpec defaultsFor(SensorKind kind)
+{
+	SensorSpec s;
+	s.kind = kind;
+	switch (kind)
+	{
+		case SensorKind::Rosette:  // Livox MID-40: 2 cm range noise, 0.28 x 0.03 deg beam
+			s.rangeNoiseSigma = 0.02;
+			s.beam.divergenceMrad = 2.5;
+			s.minRange = 1.0;
+			s.maxRange = 260;
+			break;
+		case SensorKind::Spinning:  // 32-beam Ouster/Velodyne-like
+			s.rangeNoiseSigma = 0.015;
+			s.beam.divergenceMrad = 3.0;
+			s.minRange = 0.5;
+			s.maxRange = 120;
+			for (int i = 0; i < 32; i++) s.spinning.beamElevationsDeg.push_back(-22.5 + 45.0 * i / 31);
+			break;
+		case SensorKind::Grid:  // phase/pulse terrestrial scanner
+			s.rangeNoiseSigma = 0.003;
+			s.beam.divergenceMrad = 0.5;
+			s.minRange = 0.6;
+			s.maxRange = 150;
+			break;
+	}
+	return s;
+}
+}  // namespace
+
+SensorSpec parseSensor(const YamlReader& r)
+{
+	r.allowKeys({"name", "type", "range_noise", "range", "frame_period", "beam", "intensity", "fov_deg",
+				 "points_per_second", "prism_rpm", "beams", "vertical_fov_deg", "elevations_deg", "columns",
+				 "rev_per_second", "azimuth_deg", "elevation_deg", "step_deg"});
+	const std::string type = r.text("type");
+	SensorKind kind;
+	if (type == "rosette" || type == "livox_mid40")
+		kind = SensorKind::Rosette;
+	else if (type == "spinning")
+		kind = SensorKind::Spinning;
+	else if (type == "grid" || type == "terrestrial")
+		kind = SensorKind::Grid;
+	else
+		r.child("type").fail("unknown sensor type '" + type + "' (rosette, livox_mid40, spinning, grid, terrestrial)");
+
+	SensorSpec s = defaultsFor(kind);
+	s.name = r.text("name");
+	s.rangeNoiseSigma = r.positive("range_noise", s.rangeNoiseSigma, true);
+	readInterval(r, "range", s.minRange, s.maxRange);
+	s.framePeriod = r.positive("frame_period", s.framePeriod);
+
+	if (r.has("beam"))
+	{
+		const YamlReader b = r.child("beam");
+		b.allowKeys({"divergence_mrad", "sub_rays", "mixing_window"});
+		s.beam.divergenceMrad = b.positive("divergence_mrad", s.beam.divergenceMrad, true);
+		s.beam.subRays = b.integer("sub_rays", s.beam.subRays);
+		if (s.beam.subRays < 0 || s.beam.subRays > 32) b.child("sub_rays").fail("must be 0..32");
+		s.beam.mixingWindow = b.positive("mixing_window", s.beam.mixingWindow, true);
+	}
+	if (r.has("intensity"))
+	{
+		const YamlReader i = r.child("intensity");
+		i.allowKeys({"gain", "incidence_exponent", "range_reference", "range_falloff_exponent", "noise",
+					 "detection_threshold"});
+		IntensityParams& p = s.intensity;
+		p.gain = i.positive("gain", p.gain);
+		p.incidenceExponent = i.positive("incidence_exponent", p.incidenceExponent, true);
+		p.rangeReference = i.positive("range_reference", p.rangeReference);
+		p.rangeFalloffExponent = i.positive("range_falloff_exponent", p.rangeFalloffExponent, true);
+		p.noiseSigma = i.positive("noise", p.noiseSigma, true);
+		p.detectionThreshold = i.positive("detection_threshold", p.detectionThreshold, true);
+	}
+
+	switch (kind)
+	{
+		case SensorKind::Rosette:
+		{
+			s.rosette.fovDeg = r.positive("fov_deg", s.rosette.fovDeg);
+			if (s.rosette.fovDeg >= 180) r.child("fov_deg").fail("must be < 180");
+			s.rosette.pointsPerSecond = r.positive("points_per_second", s.rosette.pointsPerSecond);
+			if (r.has("prism_rpm"))
+			{
+				const auto rpm = r.numbers("prism_rpm", 2);
+				if (rpm[0] == 0 || rpm[1] == 0) r.child("prism_rpm").fail("prism speeds must be non-zero");
+				s.rosette.prism1Rpm = rpm[0];
+				s.rosette.prism2Rpm = rpm[1];
+			}
+			break;
+		}
+		case SensorKind::Spinning:
+		{
+			if (r.has("elevations_deg"))
+			{
+				s.spinning.beamElevationsDeg = r.numbers("elevations_deg");
+				if (s.spinning.beamElevationsDeg.empty()) r.child("elevations_deg").fail("needs at least one beam");
+			}
+			else if (r.has("beams") || r.has("vertical_fov_deg"))
+			{
+				const int n = r.integer("beams", 32);
+				if (n < 1 || n > 1024) r.child("beams").fail("must be 1..1024");
+				double lo = -22.5, hi = 22.5;
+				readInterval(r, "vertical_fov_deg", lo, hi);
+				s.spinning.beamElevationsDeg.clear();
+				for (int i = 0; i < n; i++) s.spinning.beamElevationsDeg.push_back(n == 1 ? lo : lo + (hi - lo) * i / (n - 1));
+			}
+			s.spinning.columns = r.integer("columns", s.spinning.columns);
+			if (s.spinning.columns < 1) r.child("columns").fail("must be >= 1");
+			s.spinning.revPerSecond = r.positive("rev_per_second", s.spinning.revPerSecond);
+			break;
+		}
+		case SensorKind::Grid:
+		{
+			GridParams& g = s.grid;
+			readInterval(r, "azimuth_deg", g.azMinDeg, g.azMaxDeg);
+			readInterval(r, "elevation_deg", g.elMinDeg, g.elMaxDeg);
+			if (g.elMinDeg < -90 || g.elMaxDeg > 90) r.child("elevation_deg").fail("must lie within [-90, 90]");
+			if (r.has("step_deg"))
+			{
+				const auto st = r.numbers("step_deg", 2);
+				if (st[0] <= 0 || st[1] <= 0) r.child("step_deg").fail("steps must be > 0");
+				g.azStepDeg = st[0];
+				g.elStepDeg = st[1];
+			}
+			break;
+		}
+	}
+	return s;
+}
+
+}  // namespace tagmap::sim

@@ -1,0 +1,127 @@
+#include "tagmap/sim/simulate.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "ray_engine.h"
+#include "tagmap/sim/drift.h"
+#include "tagmap/sim/point_budget.h"
+#include "tagmap/sim/tag_paper.h"
+#include "tagmap/sim/trajectory.h"
+
+namespace tagmap::sim
+{
+namespace
+{
+size_t totalRays(const std::vector<Frame>& frames)
+{
+	size_t n = 0;
+	for (const auto& f : frames) n += f.rays;
+	return n;
+}
+
+// Rays of a cheap pilot run used to measure the fraction of rays that return.
+constexpr double kPilotRays = 300000;
+
+/** Factor that makes `scene` produce about `target` points. */
+double densityForTarget(const Scene& scene, const World& world, size_t target, const SimOptions& options)
+{
+	const size_t rays = totalRays(scheduleFrames(scene));
+	if (rays == 0) return 1;
+	Scene pilot = scene;
+	const double pilotFactor = std::min(1.0, kPilotRays / static_cast<double>(rays));
+	scaleSceneDensity(pilot, pilotFactor);
+	const auto frames = scheduleFrames(pilot);
+	const EngineResult r = castFrames(pilot, world, frames, options);
+	const double hitFraction = r.rays ? static_cast<double>(r.points.size()) / static_cast<double>(r.rays) : 0;
+	if (hitFraction <= 0) return 1;
+	return static_cast<double>(target) / hitFraction / static_cast<double>(rays);
+}
+}  // namespace
+
+SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options)
+{
+	const auto start = std::chrono::steady_clock::now();
+	SimulationOutput out;
+	out.sceneName = sceneIn.name;
+	out.intensityScale = options.intensityScale;
+
+	// The world: scene objects plus one paper per tag, at its seed-jittered pose.
+	std::vector<SceneObject> objects = sceneIn.objects;
+	for (size_t ti = 0; ti < sceneIn.tags.size(); ti++)
+	{
+		const TagSpec& spec = sceneIn.tags[ti];
+		const Eigen::Isometry3d printed = printedTagPose(spec, options.seed, ti);
+		SceneObject paper = makeTagPaper(spec, printed);
+		paper.tagIndex = static_cast<int>(ti);
+		objects.push_back(std::move(paper));
+		out.truth.push_back(tagTruth(spec, printed));
+	}
+	for (const auto& o : objects) out.objectNames.push_back(o.name);
+	const World world(objects);
+
+	Scene scene = sceneIn;
+	if (options.targetPoints > 0)
+	{
+		out.densityFactor = densityForTarget(scene, world, options.targetPoints, options);
+		scaleSceneDensity(scene, out.densityFactor);
+	}
+	for (const auto& s : scene.sensors) out.sensorNames.push_back(s.name);
+
+	const std::vector<Frame> frames = scheduleFrames(scene);
+	EngineResult cast = castFrames(scene, world, frames, options);
+	out.raysCast = cast.rays;
+	out.points = std::move(cast.points);
+
+	// Poses a SLAM system would have used to merge the frames.
+	std::vector<DriftStep> steps(frames.size());
+	for (size_t k = 0; k < frames.size(); k++)
+	{
+		steps[k].truePose = frames[k].truePose;
+		steps[k].scale = scene.runs[frames[k].run].driftScale;
+		// Sensor-clock time between the frames' reference instants.
+		const auto mid = [&](size_t j) { return frames[j].clock + 0.5 * frames[j].duration; };
+		steps[k].seconds = k ? std::max(0.0, mid(k) - mid(k - 1)) : 0.0;
+	}
+	const auto drifted = driftPoses(steps, scene.drift, options.seed);
+
+	size_t first = 0;
+	for (size_t k = 0; k < frames.size(); k++)
+	{
+		FrameData fd;
+		fd.run = frames[k].run;
+		fd.runName = scene.runs[frames[k].run].name;
+		fd.sensorName = scene.sensors[frames[k].sensor].name;
+		fd.time = frames[k].tRef;
+		fd.stamp = frames[k].clock + 0.5 * frames[k].duration;
+		fd.duration = frames[k].duration;
+		fd.truePose = frames[k].truePose;
+		fd.driftedPose = drifted[k];
+		fd.firstPoint = first;
+		fd.pointCount = cast.frameCounts[k];
+		first += fd.pointCount;
+		out.frames.push_back(fd);
+	}
+
+	// Merge at the drifted poses.
+	out.tagPoints.assign(sceneIn.tags.size(), 0);
+	const size_t firstTagObject = sceneIn.objects.size();
+	out.map.resize(out.points.size());
+	for (const FrameData& fd : out.frames)
+	{
+		const Eigen::Isometry3f T = fd.driftedPose.cast<float>();
+		for (size_t i = fd.firstPoint; i < fd.firstPoint + fd.pointCount; i++)
+		{
+			const SimPoint& p = out.points[i];
+			const Eigen::Vector3f g = T * p.local;
+			out.map.setPointFast(i, g.x(), g.y(), g.z());
+			out.map.setPointIntensity(i, static_cast<float>(p.intensity01 * options.intensityScale));
+			if (p.object >= static_cast<int32_t>(firstTagObject)) out.tagPoints[p.object - firstTagObject]++;
+		}
+	}
+	out.map.mark_as_modified();
+	out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+	return out;
+}
+
+}  // namespace tagmap::sim

@@ -1,0 +1,65 @@
+#include "tagmap/sim/tag_paper.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tagmap/sim/rng.h"
+#include "tagmap/tag_family.h"
+
+namespace tagmap::sim
+{
+Eigen::Isometry3d printedTagPose(const TagSpec& spec, uint64_t seed, size_t tagIndex)
+{
+	Eigen::Isometry3d T = spec.pose;
+	if (spec.jitterDeg > 0)
+	{
+		Rng rng(streamSeed(seed, kStreamScene, tagIndex));
+		std::uniform_real_distribution<double> u(-spec.jitterDeg * M_PI / 180, spec.jitterDeg * M_PI / 180);
+		const double rx = u(rng), ry = u(rng), rz = u(rng);
+		T.linear() = T.linear() * (Eigen::AngleAxisd(rz, Eigen::Vector3d::UnitZ()) *
+								   Eigen::AngleAxisd(ry, Eigen::Vector3d::UnitY()) *
+								   Eigen::AngleAxisd(rx, Eigen::Vector3d::UnitX()))
+									  .toRotationMatrix();
+	}
+	T.translate(Eigen::Vector3d(0, 0, spec.paperOffset));
+	return T;
+}
+
+SceneObject makeTagPaper(const TagSpec& spec, const Eigen::Isometry3d& printedPose)
+{
+	const TagBitmap bm = renderTagBitmap(spec.family, spec.id);
+	const double cell = spec.size / bm.borderCells;
+	// Grid placed so the border square is centred on the tag origin.
+	const double centre = (bm.borderStart + 0.5 * bm.borderCells) * cell;
+	Rect r;
+	r.pose = printedPose;
+	r.printedFrontOnly = true;
+	r.texture.base = spec.white;
+	r.texture.cols = r.texture.rows = bm.cells;
+	r.texture.cellW = r.texture.cellH = cell;
+	r.texture.left = -centre;
+	r.texture.top = centre;
+	r.texture.cells.resize(bm.pixels.size());
+	for (size_t i = 0; i < bm.pixels.size(); i++) r.texture.cells[i] = bm.pixels[i] ? spec.white : spec.black;
+	const double extent = std::max(centre, bm.cells * cell - centre);
+	r.halfW = r.halfH = extent + spec.margin;
+
+	SceneObject o;
+	o.name = spec.family + ":" + std::to_string(spec.id);
+	o.kind = ObjectKind::Tag;
+	o.faces.push_back(std::move(r));
+	return o;
+}
+
+TagDetection tagTruth(const TagSpec& spec, const Eigen::Isometry3d& printedPose)
+{
+	TagDetection d;
+	d.family = spec.family;
+	d.id = spec.id;
+	d.size = spec.size;
+	d.pose = printedPose;
+	d.corners = cornersFromPose(printedPose, spec.size);
+	return d;
+}
+
+}  // namespace tagmap::sim
