@@ -40,7 +40,10 @@ const char* supportedExtensions() { return ".pcd .ply .bin (KITTI) .xyzi .txt .x
 
 void loadPointCloud(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport* report)
 {
-	out.clear();
+	// resize(0), not clear(): clear() frees the buffers, and a caller that
+	// reloads into the same map would pay to allocate and fault them again.
+	out.resize(0);
+	out.mark_as_modified();
 	const Reader read = readerFor(path);
 	LoadReport local;
 	try
