@@ -160,6 +160,11 @@ TEST(IoMalformed, PlyCases)
 	appendRaw(lists, static_cast<uint32_t>(4000000000u));
 	expectInputError(writeFile("list.ply", lists), "truncated in element face (record 0 of 1000000000000)");
 
+	std::string negative = "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list char int idx\nelement vertex 1\n" + props +
+						   "end_header\n";
+	appendRaw(negative, static_cast<int8_t>(-3));
+	expectInputError(writeFile("negative.ply", negative), "byte offset " + std::to_string(negative.size() - 1) + ": element face: negative list length");
+
 	expectInputError(writeFile("short.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" + props + "end_header\n1 2 3 4\n"),
 					 "line 10: file ends in element vertex after 1 of 3 records");
 	expectInputError(writeFile("nan.ply", "ply\nformat ascii 1.0\nelement vertex 1\n" + props + "end_header\n1 2 x 4\n"),
@@ -194,4 +199,57 @@ TEST(IoMalformed, DirectoryIsNotAFile)
 	const std::string dir = scratchPath("folder.pcd");
 	std::filesystem::create_directories(dir);
 	expectInputError(dir, "is not a regular file");
+}
+
+TEST(IoMalformed, CutsAndCorruptionNeverCrash)
+{
+	const auto pts = samplePoints(300);
+	std::string plyBinary = "ply\nformat binary_little_endian 1.0\nelement vertex 300\nproperty float x\nproperty float y\nproperty float z\n"
+							"property float intensity\nelement face 1\nproperty list uchar int idx\nend_header\n";
+	for (const auto& p : pts)
+		for (float v : {p.x, p.y, p.z, p.i}) appendRaw(plyBinary, v);
+	const std::vector<std::pair<std::string, std::string>> files{
+		{".pcd", makePcd(pts, xyziFields(), "ascii")},
+		{".pcd", makePcd(pts, xyziFields(), "binary")},
+		{".pcd", makePcd(pts, {{"x", 'F', 8}, {"_", 'U', 1, 3}, {"y"}, {"z"}, {"i", 'U', 2}}, "binary_compressed", "i")},
+		{".ply", plyBinary},
+		{".bin", std::string(plyBinary.end() - 16 * 300, plyBinary.end())},
+	};
+	uint32_t seed = 12345;
+	auto next = [&] { return seed = seed * 1664525u + 1013904223u; };
+	size_t errors = 0, loads = 0;
+	for (size_t f = 0; f < files.size(); ++f)
+	{
+		const std::string& good = files[f].second;
+		std::vector<std::string> variants;
+		for (size_t cut = 0; cut < good.size(); cut += good.size() / 40 + 1) variants.push_back(good.substr(0, cut));
+		for (int k = 0; k < 60; ++k)
+		{
+			std::string bad = good;
+			const size_t at = next() % std::min<size_t>(bad.size(), 400);  // mostly headers and the LZF stream start
+			bad[at] = static_cast<char>(next());
+			variants.push_back(bad);
+		}
+		for (size_t v = 0; v < variants.size(); ++v)
+		{
+			const std::string path = writeFile("f" + std::to_string(f) + files[f].first, variants[v]);
+			try
+			{
+				mrpt::maps::CPointsMapXYZI map;
+				tagmap::io::loadPointCloud(path, map);
+				++loads;
+			}
+			catch (const tagmap::InputError& e)
+			{
+				++errors;
+				EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+			}
+			catch (const std::exception& e)
+			{
+				ADD_FAILURE() << "file " << f << " variant " << v << ": not an InputError: " << e.what();
+			}
+		}
+	}
+	EXPECT_GT(errors, 150u);  // the cuts alone are errors
+	EXPECT_GT(loads, 10u);  // byte flips inside values still load
 }

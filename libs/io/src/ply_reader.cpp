@@ -194,9 +194,8 @@ class BinaryWalker
 			pos_ += scalarSize(p.type);
 			return;
 		}
-		const float lengthValue = value(e, r, PlyProperty{p.name, p.countType, false, p.countType});
-		if (lengthValue < 0) throw InputError(path_, byteAt(pos_), "element " + e.name + ": negative list length");
-		const auto bytes = checkedMul(static_cast<uint64_t>(lengthValue), scalarSize(p.type));
+		const uint64_t length = listLength(e, r, p);
+		const auto bytes = checkedMul(length, scalarSize(p.type));
 		if (!bytes || *bytes > bytes_.size() - pos_) truncated(e, r);
 		pos_ += static_cast<size_t>(*bytes);
 	}
@@ -208,6 +207,35 @@ class BinaryWalker
 	}
 
    private:
+	// Read as an integer, not through float: lengths above 2^24 must stay exact.
+	uint64_t listLength(const PlyElement& e, uint64_t r, const PlyProperty& p)
+	{
+		const size_t at = pos_;
+		need(e, r, scalarSize(p.countType));
+		const char* q = bytes_.data() + pos_;
+		pos_ += scalarSize(p.countType);
+		int64_t n = 0;
+		switch (p.countType)
+		{
+			case Scalar::I8: n = intAs<int8_t>(q); break;
+			case Scalar::U8: n = intAs<uint8_t>(q); break;
+			case Scalar::I16: n = intAs<int16_t>(q); break;
+			case Scalar::U16: n = intAs<uint16_t>(q); break;
+			case Scalar::I32: n = intAs<int32_t>(q); break;
+			default: n = intAs<uint32_t>(q); break;  // the header allows no other type
+		}
+		if (n < 0) throw InputError(path_, byteAt(at), "element " + e.name + ": negative list length");
+		return static_cast<uint64_t>(n);
+	}
+
+	template <typename T>
+	static int64_t intAs(const char* q)
+	{
+		T v;
+		std::memcpy(&v, q, sizeof v);
+		return static_cast<int64_t>(v);
+	}
+
 	void need(const PlyElement& e, uint64_t r, size_t n) const
 	{
 		if (n > bytes_.size() - pos_) truncated(e, r);
