@@ -1,1 +1,2 @@
 tagmap_test(test_tag_decoder SOURCES unit/test_tag_decoder.cpp LIBS tagmap_detect)
+tagmap_test(test_pipeline SOURCES unit/test_pipeline.cpp LIBS tagmap_detect)

@@ -11,10 +11,13 @@
 #include <mrpt/maps/CPointsMapXYZI.h>
 
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "tagmap/pipeline_params.h"
+#include "tagmap/tag_decoder.h"
 #include "tagmap/tag_detection.h"
 
 namespace tagmap
@@ -59,6 +62,11 @@ class Pipeline
 
    private:
 	PipelineParams params_;
+	// Decoders are costly to build (libapriltag's decode tables): one per
+	// worker thread, made on first use and kept for the next detect().
+	mutable std::vector<std::unique_ptr<TagDecoder>> decoders_;
+	mutable std::mutex decodersMutex_;
+	TagDecoder& decoderFor(unsigned worker) const;
 };
 
 }  // namespace tagmap

@@ -1,0 +1,32 @@
+// Stage 3 (paper, Sec. II-D): keep clusters whose box could hold a tag.
+// Criterion 1 (size): the box diagonal in the tag plane lies between the
+// tag's side (box aligned with the tag) and its diagonal (box at 45 deg);
+// Criterion 2 (squareness): length / width <= 1.5. We also require the
+// cluster to be flat, since a tag is paper on a surface.
+#pragma once
+
+#include <string>
+
+#include "tagmap/clustering.h"
+
+namespace tagmap
+{
+struct CandidateFilterParams
+{
+	double tagSize = 0;  // metres; 0 = unknown, use [minTagSize, maxTagSize]
+	double minTagSize = 0.10;
+	double maxTagSize = 1.50;
+	double maxAspect = 1.5;  // criterion 2
+	/** A tag's edge points may miss part of the border (sparse or occluded
+	 *  scans): accept a box this much smaller than the smallest tag. */
+	double shortfall = 0.15;
+	/** Flatness: box height at most this fraction of its width (plus noise). */
+	double maxFlatness = 0.35;
+};
+
+/** "" when the box may hold a tag, else the reason: "size", "squareness" or
+ *  "not_flat". `band` is how far the kept edge points reach beyond the tag
+ *  border (the gradient radius), `noise` the expected thickness of a plane. */
+std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
+
+}  // namespace tagmap

@@ -1,0 +1,49 @@
+// Stage 4 (paper, Sec. II-E, first half): collect the raw map points inside
+// a candidate's enlarged box. An OctoMap occupancy octree over the map lets
+// the search descend only into occupied space, so a box that spans empty
+// air or a large room costs what its occupied surface costs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "tagmap/clustering.h"
+#include "tagmap/voxel_grid.h"
+
+namespace octomap
+{
+class OcTree;
+}
+
+namespace tagmap
+{
+struct GatherParams
+{
+	double enlarge = 1.6;  // box length and width are multiplied by this (paper's t_b)
+	/** Half thickness of the gathered slab, in point spacings, on top of the
+	 *  box's own half height: keeps the tag's plane, drops what is behind. */
+	double slabSpacings = 4.0;
+	int octreeCellsPerLeaf = 4;  // octree leaf edge = this many neighbour-grid voxels
+};
+
+class OctreeGatherer
+{
+   public:
+	OctreeGatherer(const VoxelGrid& grid, const GatherParams& p);
+	~OctreeGatherer();
+
+	/** Map indices of the points inside `box` enlarged by the parameters. */
+	std::vector<uint32_t> gather(const OrientedBox& box, double spacing, const float* xs, const float* ys,
+								 const float* zs) const;
+
+	size_t occupiedLeaves() const { return leaves_; }
+
+   private:
+	const VoxelGrid& grid_;
+	GatherParams params_;
+	std::unique_ptr<octomap::OcTree> tree_;
+	size_t leaves_ = 0;
+};
+
+}  // namespace tagmap

@@ -1,0 +1,56 @@
+// Deterministic parallel-for over an index range, with std::thread: the
+// range is cut into fixed blocks, so results written per index are the same
+// for any thread count.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace tagmap
+{
+/** Calls f(begin, end) on consecutive blocks of [0, n) from `threads` threads. */
+template <typename F>
+void parallelForBlocks(size_t n, unsigned threads, F&& f, size_t blockSize = 4096)
+{
+	threads = std::max(1u, threads);
+	if (threads == 1 || n <= blockSize)
+	{
+		f(size_t{0}, n);
+		return;
+	}
+	std::atomic<size_t> next{0};
+	auto worker = [&] {
+		for (size_t b; (b = next.fetch_add(blockSize)) < n;) f(b, std::min(n, b + blockSize));
+	};
+	std::vector<std::thread> pool;
+	for (unsigned t = 1; t < threads; t++) pool.emplace_back(worker);
+	worker();
+	for (auto& t : pool) t.join();
+}
+
+/** Like parallelForBlocks, but f(worker, begin, end) also gets the index of
+ *  the worker thread (0 .. threads-1), for per-thread scratch objects. */
+template <typename F>
+void parallelForWorkers(size_t n, unsigned threads, F&& f, size_t blockSize = 1)
+{
+	threads = std::max(1u, threads);
+	std::atomic<size_t> next{0};
+	auto worker = [&](unsigned w) {
+		for (size_t b; (b = next.fetch_add(blockSize)) < n;) f(w, b, std::min(n, b + blockSize));
+	};
+	std::vector<std::thread> pool;
+	for (unsigned t = 1; t < threads && t < n; t++) pool.emplace_back(worker, t);
+	worker(0);
+	for (auto& t : pool) t.join();
+}
+
+/** Number of threads to use: `requested`, or the hardware's when 0. */
+inline unsigned resolveThreads(unsigned requested)
+{
+	return requested ? requested : std::max(1u, std::thread::hardware_concurrency());
+}
+
+}  // namespace tagmap

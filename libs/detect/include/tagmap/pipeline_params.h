@@ -1,0 +1,51 @@
+// Every parameter of the pipeline, grouped by stage. Lengths are in point
+// spacings (measured from the map) or tag cells, not metres, so defaults
+// hold from sparse SLAM maps to dense terrestrial scans.
+// share/config/default.yaml documents each one; load with fromYamlFile().
+#pragma once
+
+#include <mrpt/containers/yaml.h>
+
+#include <string>
+#include <vector>
+
+#include "tagmap/candidate_filter.h"
+#include "tagmap/clustering.h"
+#include "tagmap/intensity_gradient.h"
+#include "tagmap/intermediate_plane.h"
+#include "tagmap/octree_gather.h"
+#include "tagmap/pattern_refinement.h"
+#include "tagmap/point_spacing.h"
+#include "tagmap/tag_decoder.h"
+
+namespace tagmap
+{
+struct PipelineParams
+{
+	std::vector<std::string> families;  // empty: every supported family
+	double tagSize = 0;  // metres; 0: unknown, searched in [candidates.minTagSize, candidates.maxTagSize]
+	unsigned threads = 0;  // 0: all cores
+
+	/** Gradient neighbourhood radius, in point spacings. */
+	double gradientRadiusSpacings = 2.5;
+
+	PointSpacingParams spacing;
+	IntensityGradientParams gradient;
+	ClusteringParams clustering;
+	CandidateFilterParams candidates;
+	GatherParams gather;
+	IntermediatePlaneParams plane;
+	TagDecoderParams decoder;
+	PatternRefinementParams refinement;
+
+	/** Reads the keys present in `y` over the defaults; throws
+	 *  std::invalid_argument naming an unknown key or an invalid value. */
+	static PipelineParams fromYaml(const mrpt::containers::yaml& y);
+	static PipelineParams fromYamlFile(const std::string& path);  // throws InputError
+	mrpt::containers::yaml toYaml() const;
+
+	/** Throws std::invalid_argument when a value is out of range. */
+	void validate() const;
+};
+
+}  // namespace tagmap

@@ -1,0 +1,22 @@
+// Stage 6 (paper, Sec. II-E, end): decoded 2D corners back to 3D on the
+// fitted tag plane, in vertex-index order, and the pose T_G_tag by SVD
+// (Kabsch) against the tag model, with a covariance.
+#pragma once
+
+#include "tagmap/intermediate_plane.h"
+#include "tagmap/tag_decoder.h"
+#include "tagmap/tag_detection.h"
+
+namespace tagmap
+{
+/** `knownSize` > 0 forces the model size; otherwise it is measured from
+ *  the corners. The tag's z axis is the plane normal, oriented by the
+ *  corner order (z = x_tag cross y_tag), so mirrored reads come out right. */
+TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, double knownSize);
+
+/** Covariance of [x y z | rx ry rz] in the map frame from in-plane and
+ *  out-of-plane standard deviations expressed in the tag frame. */
+Eigen::Matrix<double, 6, 6> tagFrameCovarianceToMap(const Eigen::Matrix3d& R_G_tag, const Eigen::Vector3d& sigmaT,
+													 const Eigen::Vector3d& sigmaR);
+
+}  // namespace tagmap

@@ -1,0 +1,136 @@
+#include "tagmap/intermediate_plane.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "tagmap/point_stats.h"
+
+namespace tagmap
+{
+namespace
+{
+struct PlaneFit
+{
+	Eigen::Vector3d centroid, normal;
+	double rms = 0;
+};
+
+PlaneFit fitPlane(const float* xs, const float* ys, const float* zs, const std::vector<uint32_t>& pts)
+{
+	PlaneFit f;
+	const PointStats st = pointStats(xs, ys, zs, pts);
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(st.scatter);
+	f.centroid = st.mean;
+	f.normal = es.eigenvectors().col(0);
+	f.rms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / static_cast<double>(pts.size()));
+	return f;
+}
+}  // namespace
+
+PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float* zs, const float* is,
+								   const std::vector<uint32_t>& points, const OrientedBox& box, double spacing,
+								   const IntermediatePlaneParams& p)
+{
+	PlaneImage out;
+	if (points.size() < 16) return out;
+
+	// Robust plane: start from the cluster box, keep points near the plane,
+	// refit, and tighten to a few residual RMS. Walls behind a board, and
+	// mixed-pixel points in between, fall out after the first rounds.
+	Eigen::Vector3d c = box.center, n = box.axes.col(2);
+	double tol = std::max(0.5 * box.extent.z(), 2 * spacing) + 2 * spacing;
+	std::vector<uint32_t> in;
+	PlaneFit fit{c, n, tol};
+	for (int iter = 0; iter < 5; iter++)
+	{
+		in.clear();
+		for (uint32_t i : points)
+			if (std::abs((Eigen::Vector3d(xs[i], ys[i], zs[i]) - c).dot(n)) <= tol) in.push_back(i);
+		if (in.size() < 16) return out;
+		fit = fitPlane(xs, ys, zs, in);
+		c = fit.centroid;
+		// Keep the side the box chose: which side is "front" is decided by
+		// the decoder (raw or mirrored read), not by an eigenvector's sign.
+		n = fit.normal.dot(box.axes.col(2)) >= 0 ? fit.normal : Eigen::Vector3d(-fit.normal);
+		tol = std::max(p.inlierSigmas * fit.rms, 0.5 * spacing);
+	}
+	out.inliers = in;
+	out.planeRms = fit.rms;
+
+	// In-plane axes: the box's length direction projected onto the plane.
+	PlaneFrame& fr = out.frame;
+	fr.n = n;
+	fr.u = (box.axes.col(0) - n * n.dot(box.axes.col(0))).normalized();
+	fr.v = n.cross(fr.u);
+
+	Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+	std::vector<Eigen::Vector2d> uv(in.size());
+	for (size_t k = 0; k < in.size(); k++)
+	{
+		const Eigen::Vector3d d = Eigen::Vector3d(xs[in[k]], ys[in[k]], zs[in[k]]) - c;
+		uv[k] = Eigen::Vector2d(d.dot(fr.u), d.dot(fr.v));
+		lo = lo.cwiseMin(uv[k]);
+		hi = hi.cwiseMax(uv[k]);
+	}
+	const double area = std::max((hi - lo).prod(), 1e-8);
+	out.localSpacing = std::sqrt(area / static_cast<double>(in.size()));
+	fr.pixel = std::max(p.pixelSpacings * out.localSpacing, (hi - lo).maxCoeff() / p.maxImagePixels);
+	const int pad = p.paddingPixels;
+	const int W = static_cast<int>(std::ceil((hi.x() - lo.x()) / fr.pixel)) + 2 * pad;
+	const int H = static_cast<int>(std::ceil((hi.y() - lo.y()) / fr.pixel)) + 2 * pad;
+	// Pixel-edge (0, 0) is the top-left: smallest u, largest v.
+	fr.origin = c + fr.u * (lo.x() - pad * fr.pixel) + fr.v * (hi.y() + pad * fr.pixel);
+
+	// Gaussian splatting: each point spreads its intensity over nearby
+	// pixels; the image is the weighted mean (normalised convolution).
+	cv::Mat wsum(H, W, CV_32F, cv::Scalar(0)), isum(H, W, CV_32F, cv::Scalar(0));
+	const double sigmaPx = std::max(0.5, p.splatSpacings * out.localSpacing / fr.pixel);
+	const int rad = static_cast<int>(std::ceil(2 * sigmaPx));
+	const double inv2s2 = 1.0 / (2 * sigmaPx * sigmaPx);
+	std::vector<float> vals;
+	vals.reserve(in.size());
+	for (size_t k = 0; k < in.size(); k++)
+	{
+		const Eigen::Vector2d xy = fr.toImage(c + fr.u * uv[k].x() + fr.v * uv[k].y());
+		const float I = is[in[k]];
+		vals.push_back(I);
+		const int cx = static_cast<int>(xy.x()), cy = static_cast<int>(xy.y());
+		for (int y = std::max(0, cy - rad); y <= std::min(H - 1, cy + rad); y++)
+			for (int x = std::max(0, cx - rad); x <= std::min(W - 1, cx + rad); x++)
+			{
+				const double dx = x + 0.5 - xy.x(), dy = y + 0.5 - xy.y();
+				const float w = static_cast<float>(std::exp(-(dx * dx + dy * dy) * inv2s2));
+				wsum.at<float>(y, x) += w;
+				isum.at<float>(y, x) += w * I;
+			}
+	}
+	// Holes (occlusion shadows, sparse scan lines): fill from ever blurrier
+	// versions of the same normalised convolution.
+	cv::Mat img;
+	cv::divide(isum, wsum + 1e-6f, img);
+	cv::Mat known = wsum > 0.05f;
+	for (double s = 2 * sigmaPx; cv::countNonZero(known) < W * H && s < std::max(W, H); s *= 2)
+	{
+		cv::Mat bw, bi;
+		cv::GaussianBlur(wsum, bw, cv::Size(), s);
+		cv::GaussianBlur(isum, bi, cv::Size(), s);
+		cv::Mat filled;
+		cv::divide(bi, bw + 1e-9f, filled);
+		cv::Mat holes = ~known & (bw > 1e-4f);
+		filled.copyTo(img, holes);
+		known |= holes;
+	}
+
+	// Contrast normalisation from the points' own intensities: the image
+	// does not depend on the sensor's intensity scale.
+	std::sort(vals.begin(), vals.end());
+	const double lo8 = vals[vals.size() * 2 / 100], hi8 = vals[vals.size() * 98 / 100];
+	const double scale = hi8 > lo8 ? 255.0 / (hi8 - lo8) : 1.0;
+	img.convertTo(out.gray, CV_8U, scale, -lo8 * scale);
+	out.gray.setTo(cv::Scalar(static_cast<int>(std::clamp((vals[vals.size() / 2] - lo8) * scale, 0.0, 255.0))), ~known);
+	return out;
+}
+
+}  // namespace tagmap

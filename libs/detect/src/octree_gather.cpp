@@ -1,0 +1,68 @@
+#include "tagmap/octree_gather.h"
+
+#include <octomap/OcTree.h>
+
+#include <cmath>
+
+namespace tagmap
+{
+OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, const GatherParams& p) : grid_(grid), params_(p)
+{
+	tree_ = std::make_unique<octomap::OcTree>(grid.cellSize() * p.octreeCellsPerLeaf);
+	// Only occupancy matters: mark each occupied leaf once, then let OctoMap
+	// prune uniform regions.
+	for (size_t v = 0; v < grid.voxelCount(); v++)
+	{
+		const Eigen::Vector3d c = grid.voxelCenter(grid.keyOfVoxel(v));
+		tree_->updateNode(octomap::point3d(c.x(), c.y(), c.z()), true, true);
+	}
+	tree_->updateInnerOccupancy();
+	leaves_ = tree_->getNumLeafNodes();
+}
+
+OctreeGatherer::~OctreeGatherer() = default;
+
+std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spacing, const float* xs,
+											 const float* ys, const float* zs) const
+{
+	const Eigen::Vector3d half(0.5 * box.extent.x() * params_.enlarge, 0.5 * box.extent.y() * params_.enlarge,
+							   0.5 * box.extent.z() + params_.slabSpacings * spacing);
+	// Axis-aligned bounds of the enlarged box, for the octree query.
+	const Eigen::Vector3d reach = box.axes.cwiseAbs() * half;
+	const Eigen::Vector3d lo = box.center - reach, hi = box.center + reach;
+	std::vector<uint32_t> out;
+	const double cell = grid_.cellSize();
+	for (auto it = tree_->begin_leafs_bbx(octomap::point3d(lo.x(), lo.y(), lo.z()), octomap::point3d(hi.x(), hi.y(), hi.z())),
+			  end = tree_->end_leafs_bbx();
+		 it != end; ++it)
+	{
+		if (!tree_->isNodeOccupied(*it)) continue;
+		const octomap::point3d c = it.getCoordinate();
+		const double s = it.getSize();
+		// Neighbour-grid voxels under this leaf, clipped to the query bounds.
+		const Eigen::Vector3d a = Eigen::Vector3d(c.x(), c.y(), c.z()).array() - s / 2;
+		const Eigen::Vector3d b = Eigen::Vector3d(c.x(), c.y(), c.z()).array() + s / 2;
+		const Eigen::Vector3d qa = a.cwiseMax(lo), qb = b.cwiseMin(hi);
+		const VoxelKey ka = grid_.keyOf((qa.array() + cell * 1e-6).matrix().cast<float>());
+		const VoxelKey kb = grid_.keyOf((qb.array() - cell * 1e-6).matrix().cast<float>());
+		for (int z = ka.z; z <= kb.z; z++)
+			for (int y = ka.y; y <= kb.y; y++)
+				for (int x = ka.x; x <= kb.x; x++)
+				{
+					const int64_t v = grid_.find({x, y, z});
+					if (v < 0) continue;
+					for (const uint32_t* p = grid_.begin(v); p != grid_.end(v); ++p)
+					{
+						const Eigen::Vector3d q =
+							box.axes.transpose() * (Eigen::Vector3d(xs[*p], ys[*p], zs[*p]) - box.center);
+						if (std::abs(q.x()) <= half.x() && std::abs(q.y()) <= half.y() && std::abs(q.z()) <= half.z())
+							out.push_back(*p);
+					}
+				}
+	}
+	std::sort(out.begin(), out.end());
+	out.erase(std::unique(out.begin(), out.end()), out.end());
+	return out;
+}
+
+}  // namespace tagmap

@@ -1,0 +1,214 @@
+#include "tagmap/pattern_refinement.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+#include "tagmap/tag_family.h"
+#include "tagmap/tag_pose.h"
+
+namespace tagmap
+{
+namespace
+{
+constexpr int kPxPerCell = 8;
+
+// The bitmap as a smooth function of tag-plane coordinates: upsampled and
+// blurred by the point footprint, so the fit has gradients to follow.
+struct PatternModel
+{
+	cv::Mat img;  // CV_32F, 0 (black) .. 1 (white)
+	double cellsToCentre = 0;  // cells from the grid's top-left corner to the tag centre
+	int cells = 0;
+	int borderCells = 0;
+
+	PatternModel(const TagBitmap& bm, double blurCells)
+	{
+		cells = bm.cells;
+		borderCells = bm.borderCells;
+		cellsToCentre = bm.borderStart + bm.borderCells / 2.0;
+		cv::Mat small(bm.cells, bm.cells, CV_8U, const_cast<uint8_t*>(bm.pixels.data()));
+		cv::Mat big;
+		cv::resize(small, big, cv::Size(), kPxPerCell, kPxPerCell, cv::INTER_NEAREST);
+		big.convertTo(img, CV_32F, 1.0 / 255);
+		const double s = std::max(0.3, blurCells * kPxPerCell);
+		cv::GaussianBlur(img, img, cv::Size(), s, s, cv::BORDER_REPLICATE);
+	}
+
+	/** Value at tag-frame (x, y) in cells (x right, y up from the centre); false outside the grid. */
+	bool sample(double xc, double yc, double& out) const
+	{
+		const double col = (xc + cellsToCentre) * kPxPerCell - 0.5;
+		const double row = (-yc + cellsToCentre) * kPxPerCell - 0.5;
+		if (col < 0 || row < 0 || col >= img.cols - 1 || row >= img.rows - 1) return false;
+		const int c0 = static_cast<int>(col), r0 = static_cast<int>(row);
+		const double fc = col - c0, fr = row - r0;
+		const float* a = img.ptr<float>(r0);
+		const float* b = img.ptr<float>(r0 + 1);
+		out = (1 - fr) * ((1 - fc) * a[c0] + fc * a[c0 + 1]) + fr * ((1 - fc) * b[c0] + fc * b[c0 + 1]);
+		return true;
+	}
+};
+
+struct FitState
+{
+	double theta = 0, dx = 0, dy = 0, logScale = 0;  // relative to the initial pose and size
+};
+
+struct Evaluation
+{
+	double cost = 0;  // mean squared residual after the best affine intensity map
+	double correlation = 0;
+	size_t used = 0;
+	Eigen::VectorXd residuals;
+};
+
+}  // namespace
+
+bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs, const float* ys, const float* zs,
+					   const float* is, const PatternRefinementParams& p)
+{
+	const TagBitmap bm = renderTagBitmap(t.family, t.id);
+	const double cell0 = t.size / bm.borderCells;
+	PatternModel model(bm, 0.6 * plane.localSpacing / cell0);
+
+	// Tag-plane coordinates of the inliers in the initial tag frame.
+	const Eigen::Isometry3d T0 = t.pose;
+	std::vector<Eigen::Vector2d> q;
+	std::vector<double> I;
+	const double reach = 0.5 * bm.cells * cell0 * 1.05;
+	for (uint32_t i : plane.inliers)
+	{
+		const Eigen::Vector3d l = T0.inverse() * Eigen::Vector3d(xs[i], ys[i], zs[i]);
+		if (std::abs(l.x()) > reach || std::abs(l.y()) > reach) continue;
+		q.emplace_back(l.x(), l.y());
+		I.push_back(is[i]);
+	}
+	if (q.size() < 20) return false;
+
+	// Residuals with the intensity gain and offset solved in closed form.
+	auto evaluate = [&](const FitState& s, bool wantResiduals) {
+		Evaluation e;
+		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
+		std::vector<double> m(q.size(), -1);
+		double sm = 0, sI = 0, smm = 0, smI = 0, sII = 0;
+		for (size_t k = 0; k < q.size(); k++)
+		{
+			// Point in the refined tag frame: inverse of (rotate by theta, then shift).
+			const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
+			const double xr = c * x + sn * y, yr = -sn * x + c * y;
+			double v;
+			if (!model.sample(xr / cell, yr / cell, v)) continue;
+			m[k] = v;
+			sm += v;
+			sI += I[k];
+			smm += v * v;
+			smI += v * I[k];
+			sII += I[k] * I[k];
+			e.used++;
+		}
+		if (e.used < 20) return e;
+		const double n = static_cast<double>(e.used);
+		const double vm = smm / n - (sm / n) * (sm / n), vI = sII / n - (sI / n) * (sI / n);
+		const double cov = smI / n - (sm / n) * (sI / n);
+		e.correlation = vm > 0 && vI > 0 ? cov / std::sqrt(vm * vI) : 0;
+		const double gain = vm > 0 ? cov / vm : 0, offset = sI / n - gain * sm / n;
+		e.cost = std::max(0.0, vI - gain * cov);
+		if (wantResiduals)
+		{
+			e.residuals = Eigen::VectorXd::Zero(static_cast<long>(q.size()));
+			// Points leaving the grid get the mean residual 0: keeps the vector length fixed.
+			for (size_t k = 0; k < q.size(); k++)
+				if (m[k] >= 0) e.residuals(static_cast<long>(k)) = I[k] - (offset + gain * m[k]);
+		}
+		return e;
+	};
+
+	FitState s;
+	Evaluation best = evaluate(s, true);
+	if (p.refine)
+	{
+		const int nParams = p.estimateSize ? 4 : 3;
+		double lambda = 1e-3;
+		for (int it = 0; it < p.iterations; it++)
+		{
+			// Numeric Jacobian; steps of a tenth of a cell / a small angle.
+			const double steps[4] = {0.002, 0.05 * cell0, 0.05 * cell0, 0.002};
+			Eigen::MatrixXd J(best.residuals.size(), nParams);
+			for (int j = 0; j < nParams; j++)
+			{
+				FitState d = s;
+				double* f[4] = {&d.theta, &d.dx, &d.dy, &d.logScale};
+				*f[j] += steps[j];
+				J.col(j) = (evaluate(d, true).residuals - best.residuals) / steps[j];
+			}
+			Eigen::MatrixXd H = J.transpose() * J;
+			const Eigen::VectorXd g = J.transpose() * best.residuals;
+			bool improved = false;
+			for (int tries = 0; tries < 6 && !improved; tries++)
+			{
+				Eigen::MatrixXd Hd = H;
+				Hd.diagonal() *= (1 + lambda);
+				const Eigen::VectorXd delta = -Hd.ldlt().solve(g);
+				FitState cand = s;
+				cand.theta += delta(0);
+				cand.dx += delta(1);
+				cand.dy += delta(2);
+				if (nParams == 4) cand.logScale += delta(3);
+				Evaluation e = evaluate(cand, true);
+				if (e.used >= 20 && e.cost < best.cost)
+				{
+					s = cand;
+					best = e;
+					lambda = std::max(1e-6, lambda / 4);
+					improved = true;
+				}
+				else
+					lambda *= 8;
+			}
+			if (!improved) break;
+		}
+		// In-plane covariance from the Gauss-Newton normal equations.
+		if (best.used > 10)
+		{
+			const double sigma2 = best.cost;
+			Eigen::MatrixXd J(best.residuals.size(), 3);
+			const double steps[3] = {0.002, 0.05 * cell0, 0.05 * cell0};
+			for (int j = 0; j < 3; j++)
+			{
+				FitState d = s;
+				double* f[3] = {&d.theta, &d.dx, &d.dy};
+				*f[j] += steps[j];
+				J.col(j) = (evaluate(d, true).residuals - best.residuals) / steps[j];
+			}
+			const Eigen::Matrix3d cov = (J.transpose() * J).inverse() * sigma2;
+			if (cov.allFinite())
+			{
+				const Eigen::Matrix3d R = T0.linear();
+				Eigen::Matrix<double, 6, 6> C = t.covariance;
+				// Tag-frame in-plane translation and rotation about z, to map frame.
+				Eigen::Matrix3d Ct = R.transpose() * C.topLeftCorner<3, 3>() * R;
+				Ct(0, 0) = cov(1, 1);
+				Ct(1, 1) = cov(2, 2);
+				Ct(0, 1) = Ct(1, 0) = cov(1, 2);
+				C.topLeftCorner<3, 3>() = R * Ct * R.transpose();
+				Eigen::Matrix3d Cr = R.transpose() * C.bottomRightCorner<3, 3>() * R;
+				Cr(2, 2) = cov(0, 0);
+				C.bottomRightCorner<3, 3>() = R * Cr * R.transpose();
+				t.covariance = C;
+			}
+		}
+	}
+	t.patternFit = best.correlation;
+	if (best.correlation < p.minPatternFit) return false;
+
+	Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
+	delta.linear() = Eigen::AngleAxisd(s.theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+	delta.translation() = Eigen::Vector3d(s.dx, s.dy, 0);
+	t.pose = T0 * delta;
+	t.size *= std::exp(s.logScale);
+	t.corners = cornersFromPose(t.pose, t.size);
+	return true;
+}
+
+}  // namespace tagmap

@@ -1,0 +1,167 @@
+#include "tagmap/pipeline.h"
+
+#include <chrono>
+#include <mutex>
+
+#include "tagmap/candidate_filter.h"
+#include "tagmap/clustering.h"
+#include "tagmap/intensity_gradient.h"
+#include "tagmap/intermediate_plane.h"
+#include "tagmap/merge_detections.h"
+#include "tagmap/octree_gather.h"
+#include "tagmap/parallel.h"
+#include "tagmap/pattern_refinement.h"
+#include "tagmap/point_spacing.h"
+#include "tagmap/tag_decoder.h"
+#include "tagmap/tag_family.h"
+#include "tagmap/tag_pose.h"
+#include "tagmap/voxel_grid.h"
+
+namespace tagmap
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+class StageTimer
+{
+   public:
+	StageTimer(Detections& d, std::string name, size_t in) : d_(d), t0_(Clock::now())
+	{
+		d_.stages.push_back({std::move(name), 0, in, 0});
+	}
+	void done(size_t out)
+	{
+		d_.stages.back().itemsOut = out;
+		d_.stages.back().seconds = std::chrono::duration<double>(Clock::now() - t0_).count();
+	}
+
+   private:
+	Detections& d_;
+	Clock::time_point t0_;
+};
+
+// Everything one candidate needs from the map, in one place.
+struct MapView
+{
+	const float *xs, *ys, *zs, *is;
+	size_t n;
+};
+
+}  // namespace
+
+Pipeline::Pipeline(PipelineParams params) : params_(std::move(params)) { params_.validate(); }
+
+TagDecoder& Pipeline::decoderFor(unsigned worker) const
+{
+	std::lock_guard<std::mutex> lock(decodersMutex_);
+	if (decoders_.size() <= worker) decoders_.resize(worker + 1);
+	if (!decoders_[worker])
+		decoders_[worker] = std::make_unique<TagDecoder>(
+			params_.families.empty() ? parseFamilyList("") : params_.families, params_.decoder);
+	return *decoders_[worker];
+}
+
+Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress) const
+{
+	const auto tStart = Clock::now();
+	Detections out;
+	const MapView m{map.getPointsBufferRef_x().data(), map.getPointsBufferRef_y().data(),
+					map.getPointsBufferRef_z().data(), map.getPointsBufferRef_intensity().data(), map.size()};
+	const unsigned threads = resolveThreads(params_.threads);
+	auto report = [&](const std::string& stage, size_t done, size_t total) {
+		if (progress) progress(stage, done, total);
+	};
+	if (m.n < 16) return out;
+
+	StageTimer tSpacing(out, "point_spacing", m.n);
+	const double spacing = estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing);
+	tSpacing.done(1);
+	if (!(spacing > 0)) return out;
+	const double radius = params_.gradientRadiusSpacings * spacing;
+
+	StageTimer tGrid(out, "neighbour_index", m.n);
+	const VoxelGrid grid(m.xs, m.ys, m.zs, m.n, radius);
+	tGrid.done(grid.voxelCount());
+	report("neighbour_index", 1, 1);
+
+	StageTimer tGradient(out, "intensity_gradient", m.n);
+	const IntensityGradientResult kept = filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads);
+	tGradient.done(kept.keptPoints.size());
+	report("intensity_gradient", 1, 1);
+
+	StageTimer tCluster(out, "clustering", kept.keptPoints.size());
+	const std::vector<Cluster> clusters = clusterPoints(m.xs, m.ys, m.zs, kept.keptPoints,
+														params_.clustering.toleranceSpacings * spacing,
+														params_.clustering.minPoints);
+	tCluster.done(clusters.size());
+
+	StageTimer tFilter(out, "candidate_filter", clusters.size());
+	CandidateFilterParams cf = params_.candidates;
+	if (params_.tagSize > 0) cf.tagSize = params_.tagSize;
+	std::vector<size_t> candidates;
+	for (size_t c = 0; c < clusters.size(); c++)
+	{
+		const std::string why = rejectCandidate(clusters[c].box, radius, 2 * spacing, cf);
+		out.candidates.push_back({clusters[c].box.center, clusters[c].box.extent, clusters[c].points.size(), 0,
+								  why.empty() ? "candidate" : why});
+		if (why.empty()) candidates.push_back(c);
+	}
+	tFilter.done(candidates.size());
+
+	StageTimer tOctree(out, "octree", grid.voxelCount());
+	const OctreeGatherer gatherer(grid, params_.gather);
+	tOctree.done(gatherer.occupiedLeaves());
+
+	// Gather, render, decode, solve: independent per candidate. Results are
+	// stored per candidate index, so the output is the same for any thread count.
+	StageTimer tDecode(out, "decode", candidates.size());
+	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
+	std::mutex progressMutex;
+	size_t finished = 0;
+	parallelForWorkers(candidates.size(), threads, [&](unsigned worker, size_t b, size_t e) {
+		const TagDecoder& decoder = decoderFor(worker);
+		for (size_t k = b; k < e; k++)
+		{
+			const Cluster& cl = clusters[candidates[k]];
+			CandidateReport& rep = out.candidates[candidates[k]];
+			const std::vector<uint32_t> pts = gatherer.gather(cl.box, spacing, m.xs, m.ys, m.zs);
+			rep.gatheredPoints = pts.size();
+			const PlaneImage plane =
+				renderIntermediatePlane(m.xs, m.ys, m.zs, m.is, pts, cl.box, spacing, params_.plane);
+			rep.verdict = "no_decode";
+			if (plane.gray.empty())
+			{
+				rep.verdict = "not_planar";
+				continue;
+			}
+			for (const DecodedTag2D& d : decoder.decode(plane.gray))
+			{
+				TagDetection t = solveTagPose(d, plane, params_.tagSize);
+				PatternRefinementParams rp = params_.refinement;
+				rp.estimateSize = params_.tagSize <= 0;
+				if (!refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp))
+				{
+					rep.verdict = "pattern_mismatch";
+					continue;
+				}
+				rep.verdict = "decoded";
+				perCandidate[k].push_back(std::move(t));
+			}
+			std::lock_guard<std::mutex> lock(progressMutex);
+			report("decode", ++finished, candidates.size());
+		}
+	});
+	std::vector<TagDetection> all;
+	for (auto& v : perCandidate)
+		for (auto& t : v) all.push_back(std::move(t));
+	tDecode.done(all.size());
+
+	StageTimer tMerge(out, "merge", all.size());
+	out.tags = mergeDetections(std::move(all));
+	tMerge.done(out.tags.size());
+	out.totalSeconds = std::chrono::duration<double>(Clock::now() - tStart).count();
+	return out;
+}
+
+}  // namespace tagmap

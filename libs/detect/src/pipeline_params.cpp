@@ -1,0 +1,187 @@
+#include "tagmap/pipeline_params.h"
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <stdexcept>
+
+#include "tagmap/errors.h"
+#include "tagmap/tag_family.h"
+
+namespace tagmap
+{
+namespace
+{
+// One table of (section, key) -> field binding serves loading, dumping and
+// unknown-key detection, so the three can never disagree.
+struct Binding
+{
+	std::function<void(const mrpt::containers::yaml&)> load;
+	std::function<void(mrpt::containers::yaml&)> dump;
+};
+
+template <typename T>
+Binding bind(T& field)
+{
+	return {[&field](const mrpt::containers::yaml& v) { field = v.as<T>(); },
+			[&field](mrpt::containers::yaml& v) { v = field; }};
+}
+
+std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p)
+{
+	return {
+		{"",
+		 {{"tag_size", bind(p.tagSize)},
+		  {"threads", bind(p.threads)},
+		  {"gradient_radius_spacings", bind(p.gradientRadiusSpacings)}}},
+		{"gradient", {{"threshold", bind(p.gradient.threshold)}, {"min_neighbours", bind(p.gradient.minNeighbours)}}},
+		{"clustering",
+		 {{"tolerance_spacings", bind(p.clustering.toleranceSpacings)}, {"min_points", bind(p.clustering.minPoints)}}},
+		{"candidates",
+		 {{"min_tag_size", bind(p.candidates.minTagSize)},
+		  {"max_tag_size", bind(p.candidates.maxTagSize)},
+		  {"max_aspect", bind(p.candidates.maxAspect)},
+		  {"shortfall", bind(p.candidates.shortfall)},
+		  {"max_flatness", bind(p.candidates.maxFlatness)}}},
+		{"gather",
+		 {{"enlarge", bind(p.gather.enlarge)},
+		  {"slab_spacings", bind(p.gather.slabSpacings)},
+		  {"octree_cells_per_leaf", bind(p.gather.octreeCellsPerLeaf)}}},
+		{"plane",
+		 {{"pixel_spacings", bind(p.plane.pixelSpacings)},
+		  {"splat_spacings", bind(p.plane.splatSpacings)},
+		  {"max_image_pixels", bind(p.plane.maxImagePixels)},
+		  {"inlier_sigmas", bind(p.plane.inlierSigmas)}}},
+		{"decoder",
+		 {{"try_mirrored", bind(p.decoder.tryMirrored)},
+		  {"max_bits_corrected", bind(p.decoder.maxBitsCorrected)},
+		  {"min_decision_margin", bind(p.decoder.minDecisionMargin)}}},
+		{"refinement",
+		 {{"refine", bind(p.refinement.refine)},
+		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
+		  {"iterations", bind(p.refinement.iterations)}}},
+	};
+}
+
+void loadSection(const mrpt::containers::yaml& node, const std::string& section, std::map<std::string, Binding>& keys,
+				 const std::map<std::string, std::map<std::string, Binding>>& all)
+{
+	for (const auto& [k, v] : node.asMap())
+	{
+		const std::string key = k.as<std::string>();
+		const std::string where = section.empty() ? key : section + "." + key;
+		if (section.empty() && (all.count(key) || key == "families")) continue;
+		auto it = keys.find(key);
+		if (it == keys.end()) throw std::invalid_argument("unknown parameter '" + where + "'");
+		try
+		{
+			it->second.load(v);
+		}
+		catch (const std::exception& e)
+		{
+			throw std::invalid_argument("parameter '" + where + "' has an invalid value");
+		}
+	}
+}
+}  // namespace
+
+PipelineParams PipelineParams::fromYaml(const mrpt::containers::yaml& y)
+{
+	PipelineParams p;
+	if (y.isNullNode()) return p;
+	if (!y.isMap()) throw std::invalid_argument("configuration must be a map of parameters");
+	auto all = bindings(p);
+	loadSection(y, "", all[""], all);
+	for (auto& [section, keys] : all)
+	{
+		if (section.empty() || !y.has(section)) continue;
+		if (!y[section].isMap()) throw std::invalid_argument("section '" + section + "' must be a map");
+		loadSection(y[section], section, keys, all);
+	}
+	if (y.has("families"))
+	{
+		const auto& f = y["families"];
+		std::string list;
+		if (f.isSequence())
+			for (const auto& e : f.asSequence()) list += e.as<std::string>() + ",";
+		else if (!f.isNullNode())
+			list = f.as<std::string>();
+		p.families = list.empty() ? std::vector<std::string>{} : parseFamilyList(list);
+	}
+	p.validate();
+	return p;
+}
+
+PipelineParams PipelineParams::fromYamlFile(const std::string& path)
+{
+	mrpt::containers::yaml y;
+	try
+	{
+		y = mrpt::containers::yaml::FromFile(path);
+	}
+	catch (const std::exception& e)
+	{
+		std::string msg = e.what();
+		if (auto nl = msg.find('\n'); nl != std::string::npos) msg = msg.substr(0, nl);
+		throw InputError(path, "", "cannot read configuration: " + msg);
+	}
+	try
+	{
+		return fromYaml(y);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		throw InputError(path, "", e.what());
+	}
+}
+
+mrpt::containers::yaml PipelineParams::toYaml() const
+{
+	PipelineParams copy = *this;
+	auto all = bindings(copy);
+	mrpt::containers::yaml y = mrpt::containers::yaml::Map();
+	mrpt::containers::yaml fams = mrpt::containers::yaml::Sequence();
+	for (const auto& f : families) fams.push_back(f);
+	y["families"] = fams;
+	for (auto& [section, keys] : all)
+	{
+		if (!section.empty()) y[section] = mrpt::containers::yaml::Map();
+		for (auto& [k, b] : keys)
+		{
+			mrpt::containers::yaml v;
+			b.dump(v);
+			if (section.empty())
+				y[k] = v;
+			else
+				y[section][k] = v;
+		}
+	}
+	return y;
+}
+
+void PipelineParams::validate() const
+{
+	auto positive = [](double v, const char* name) {
+		if (!(v > 0) || !std::isfinite(v))
+			throw std::invalid_argument(std::string(name) + " must be positive (got " + std::to_string(v) + ")");
+	};
+	if (tagSize < 0 || !std::isfinite(tagSize))
+		throw std::invalid_argument("tag_size must be positive, or 0 for unknown (got " + std::to_string(tagSize) + ")");
+	positive(gradientRadiusSpacings, "gradient_radius_spacings");
+	positive(gradient.threshold, "gradient.threshold");
+	positive(clustering.toleranceSpacings, "clustering.tolerance_spacings");
+	positive(candidates.minTagSize, "candidates.min_tag_size");
+	positive(candidates.maxTagSize, "candidates.max_tag_size");
+	if (candidates.maxTagSize < candidates.minTagSize)
+		throw std::invalid_argument("candidates.max_tag_size must be at least candidates.min_tag_size");
+	if (candidates.maxAspect < 1) throw std::invalid_argument("candidates.max_aspect must be at least 1");
+	positive(gather.enlarge, "gather.enlarge");
+	positive(plane.pixelSpacings, "plane.pixel_spacings");
+	positive(plane.splatSpacings, "plane.splat_spacings");
+	if (plane.maxImagePixels < 32) throw std::invalid_argument("plane.max_image_pixels must be at least 32");
+	if (gather.octreeCellsPerLeaf < 1) throw std::invalid_argument("gather.octree_cells_per_leaf must be at least 1");
+	if (decoder.maxBitsCorrected < 0 || decoder.maxBitsCorrected > 3)
+		throw std::invalid_argument("decoder.max_bits_corrected must be 0..3");
+}
+
+}  // namespace tagmap
