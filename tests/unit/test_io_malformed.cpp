@@ -98,6 +98,8 @@ TEST(IoMalformed, PcdBadTypeSizeCombos)
 	}
 	expectInputError(writeFile("n.pcd", replaced(validPcd("binary"), "SIZE 4 4 4 4", "SIZE 4 4 4")), "line 4: SIZE has 3 entries but FIELDS has 4");
 	expectInputError(writeFile("c.pcd", replaced(validPcd("binary"), "COUNT 1 1 1 1", "COUNT 1 1 1 0")), "field intensity: COUNT 0 is out of range");
+	expectInputError(writeFile("s.pcd", replaced(replaced(validPcd("binary"), "COUNT 1 1 1 1", "COUNT 1 1 1 2"), "SIZE 4 4 4 4", "SIZE 4 4 4 four")),
+					 "line 4: bad SIZE value 'four'");
 	expectInputError(writeFile("c2.pcd", replaced(validPcd("binary"), "COUNT 1 1 1 1", "COUNT 1 2 1 1")), "field y: has COUNT 2, expected 1");
 	expectInputError(writeFile("d.pcd", replaced(validPcd("binary"), "DATA binary", "DATA binary_lz4")), "line 11: unknown DATA kind 'binary_lz4'");
 	expectInputError(writeFile("k.pcd", replaced(validPcd("binary"), "VIEWPOINT", "VIEWPORT")), "line 9: unknown header keyword 'VIEWPORT'");

@@ -155,12 +155,12 @@ class PcdHeaderParser
 		const auto& sizes = perField("SIZE", true);
 		const auto& types = perField("TYPE", true);
 		const auto& counts = perField("COUNT", false);
-		line_ = perField_["SIZE"].line;
 		size_t step = 0, values = 0;
 		for (size_t k = 0; k < names_.size(); ++k)
 		{
 			PcdField f;
 			f.name = names_[k];
+			line_ = perField_["SIZE"].line;
 			const uint64_t size = count("SIZE", sizes[k]);
 			const auto type = pcdScalar(types[k], size);
 			if (!type)
