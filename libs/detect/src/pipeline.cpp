@@ -62,7 +62,7 @@ TagDecoder& Pipeline::decoderFor(unsigned worker) const
 	return *decoders_[worker];
 }
 
-Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress) const
+Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress, bool keepImages) const
 {
 	const auto tStart = Clock::now();
 	Detections out;
@@ -103,8 +103,12 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	for (size_t c = 0; c < clusters.size(); c++)
 	{
 		const std::string why = rejectCandidate(clusters[c].box, radius, 2 * spacing, cf);
-		out.candidates.push_back({clusters[c].box.center, clusters[c].box.extent, clusters[c].points.size(), 0,
-								  why.empty() ? "candidate" : why});
+		CandidateReport rep;
+		rep.center = clusters[c].box.center;
+		rep.extent = clusters[c].box.extent;
+		rep.clusterPoints = clusters[c].points.size();
+		rep.verdict = why.empty() ? "candidate" : why;
+		out.candidates.push_back(std::move(rep));
 		if (why.empty()) candidates.push_back(c);
 	}
 	tFilter.done(candidates.size());
@@ -135,7 +139,13 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 				rep.verdict = "not_planar";
 				continue;
 			}
-			for (const DecodedTag2D& d : decoder.decode(plane.gray))
+			const std::vector<DecodedTag2D> decoded = decoder.decode(plane.gray);
+			if (keepImages)
+			{
+				rep.image = plane.gray;
+				rep.decoded = decoded;
+			}
+			for (const DecodedTag2D& d : decoded)
 			{
 				TagDetection t = solveTagPose(d, plane, params_.tagSize);
 				PatternRefinementParams rp = params_.refinement;
@@ -146,6 +156,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 					continue;
 				}
 				rep.verdict = "decoded";
+				if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
 				perCandidate[k].push_back(std::move(t));
 			}
 			std::lock_guard<std::mutex> lock(progressMutex);

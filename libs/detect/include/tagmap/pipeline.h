@@ -37,7 +37,14 @@ struct CandidateReport
 	Eigen::Vector3d extent = Eigen::Vector3d::Zero();  // OBB l, w, h
 	size_t clusterPoints = 0;
 	size_t gatheredPoints = 0;
-	std::string verdict;  // "decoded", "size", "squareness", "no_decode", "duplicate", ...
+	/** "candidate" (passed the filter), "size", "squareness", "not_flat"
+	 *  (rejected by the filter), "not_planar", "no_decode",
+	 *  "pattern_mismatch" or "decoded". */
+	std::string verdict;
+	// Filled only with Pipeline::detect(..., keepImages = true), for reports:
+	cv::Mat image;  // the intermediate-plane intensity image
+	std::vector<DecodedTag2D> decoded;  // what the decoders read on it
+	std::vector<std::string> decodedLabels;  // "tag36h11:3" per accepted decode
 };
 
 struct Detections
@@ -58,7 +65,10 @@ class Pipeline
 	const PipelineParams& params() const { return params_; }
 
 	/** Finds every tag in `map` (coordinates in the map frame {G}). */
-	Detections detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress = {}) const;
+	/** `keepImages`: store each candidate's image and decodes in
+	 *  Detections::candidates (for --report); costs memory on big maps. */
+	Detections detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress = {},
+					  bool keepImages = false) const;
 
    private:
 	PipelineParams params_;
