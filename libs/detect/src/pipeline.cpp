@@ -80,21 +80,25 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	if (!(spacing > 0)) return out;
 	const double radius = params_.gradientRadiusSpacings * spacing;
 
+	report("neighbour_index", 0, 1);
 	StageTimer tGrid(out, "neighbour_index", m.n);
 	const VoxelGrid grid(m.xs, m.ys, m.zs, m.n, radius);
 	tGrid.done(grid.voxelCount());
 	report("neighbour_index", 1, 1);
 
+	report("intensity_gradient", 0, 1);
 	StageTimer tGradient(out, "intensity_gradient", m.n);
 	const IntensityGradientResult kept = filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads);
 	tGradient.done(kept.keptPoints.size());
 	report("intensity_gradient", 1, 1);
 
+	report("clustering", 0, 1);
 	StageTimer tCluster(out, "clustering", kept.keptPoints.size());
 	const std::vector<Cluster> clusters = clusterPoints(m.xs, m.ys, m.zs, kept.keptPoints,
 														params_.clustering.toleranceSpacings * spacing,
 														params_.clustering.minPoints);
 	tCluster.done(clusters.size());
+	report("clustering", 1, 1);
 
 	StageTimer tFilter(out, "candidate_filter", clusters.size());
 	CandidateFilterParams cf = params_.candidates;
@@ -113,12 +117,15 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	}
 	tFilter.done(candidates.size());
 
+	report("octree", 0, 1);
 	StageTimer tOctree(out, "octree", grid.voxelCount());
 	const OctreeGatherer gatherer(grid, params_.gather);
 	tOctree.done(gatherer.occupiedLeaves());
+	report("octree", 1, 1);
 
 	// Gather, render, decode, solve: independent per candidate. Results are
 	// stored per candidate index, so the output is the same for any thread count.
+	report("decode", 0, candidates.size());
 	StageTimer tDecode(out, "decode", candidates.size());
 	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
 	std::mutex progressMutex;
