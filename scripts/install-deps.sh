@@ -11,6 +11,7 @@ PACKAGES=(
   libapriltag-dev
   liboctomap-dev
   libgtest-dev googletest
+  xvfb xauth imagemagick
 )
 
 missing=()

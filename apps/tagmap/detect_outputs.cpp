@@ -1,0 +1,91 @@
+#include "detect_outputs.h"
+
+#include <mrpt/core/format.h>
+
+#include "tagmap/atomic_file.h"
+#include "tagmap/maps/CTagMap.h"
+#include "tagmap/mrpt/landmarks_map.h"
+#include "tagmap/mrpt/metric_map_ini.h"
+#include "tagmap/mrpt/rawlog_writer.h"
+#include "tagmap/mrpt/serialize_gz.h"
+#include "tagmap/mrpt/tag_scene.h"
+
+#if __has_include("tagmap/pipeline_params.h")
+#include "tagmap/pipeline.h"
+#define TAGMAP_HAVE_PIPELINE 1
+#endif
+
+namespace tagmap::app
+{
+const std::set<std::string>& mrptOutputOptions()
+{
+	static const std::set<std::string> options = {"--landmarks", "--tagmap", "--ini", "--rawlog", "--3dscene"};
+	return options;
+}
+
+void checkMrptOutputs(const cli::Args& args)
+{
+	for (const auto& opt : mrptOutputOptions())
+		if (args.has(opt)) checkOutputWritable(args.get(opt));
+}
+
+namespace
+{
+// The detection settings the user chose travel with the map, so re-running
+// detection inside an MRPT app (CTagMap::tags() after new insertions) uses them.
+maps::TTagDetectionOptions detectionOptionsFrom(const cli::Args& args)
+{
+	maps::TTagDetectionOptions o;
+	o.families = args.get("--family");
+	o.tagSize = args.getDouble("--tag-size", 0);
+	o.configFile = args.get("--config");
+	return o;
+}
+
+maps::CTagMap::Ptr makeTagMap(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
+							  const std::vector<TagDetection>& tags)
+{
+	auto m = maps::CTagMap::Create();
+	m->detectionOptions = detectionOptionsFrom(args);
+	m->setPoints(map);
+	m->setTags(tags);  // after setPoints: these tags are current, no re-detection
+	return m;
+}
+
+std::vector<std::pair<std::string, std::string>> iniDetectionKeys(const maps::TTagDetectionOptions& o)
+{
+	return {{"families", o.families}, {"tagSize", mrpt::format("%.9g", o.tagSize)}, {"configFile", o.configFile}};
+}
+}  // namespace
+
+void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
+					  const std::vector<TagDetection>& tags)
+{
+	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), tags);
+	if (args.has("--3dscene")) mrpt_bridge::write3DScene(args.get("--3dscene"), map, tags);
+	if (args.has("--ini"))
+	{
+		mrpt_bridge::MetricMapIniParams p;
+		p.tagMapDetectionOptions = iniDetectionKeys(detectionOptionsFrom(args));
+		mrpt_bridge::writeMetricMapIni(args.get("--ini"), tags, p);
+	}
+	if (!args.has("--tagmap") && !args.has("--rawlog")) return;
+
+	const auto tagMap = makeTagMap(args, map, tags);
+	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *tagMap);
+	if (args.has("--rawlog"))
+	{
+		mrpt_bridge::RawlogParams p;
+		p.extraObjects.push_back(tagMap);
+		mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags, p);
+	}
+}
+
+#ifdef TAGMAP_HAVE_PIPELINE
+void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found)
+{
+	writeMrptOutputs(args, map, found.tags);
+}
+#endif
+
+}  // namespace tagmap::app

@@ -1,0 +1,40 @@
+// The MRPT outputs of `tagmap detect` (docs/MRPT.md):
+//   --landmarks F   CLandmarksMap, one beacon per tag (gz MRPT serialization)
+//   --tagmap F      tagmap::maps::CTagMap with tags and points (needs the plugin to load)
+//   --ini F         [MetricMap] block for pf-localization / ro-localization
+//   --rawlog F      CObservation3DScene for a stock RawLogViewer, then the CTagMap
+//   --3dscene F     COpenGLScene for SceneViewer3D
+// Every file is written atomically.
+#pragma once
+
+#include <mrpt/maps/CPointsMapXYZI.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "tagmap/tag_detection.h"
+
+namespace tagmap
+{
+struct Detections;
+}
+
+namespace tagmap::app
+{
+/** The value options above, for cli::parse(). */
+const std::set<std::string>& mrptOutputOptions();
+
+/** checkOutputWritable() for each requested output: call before detection, so
+ *  an unwritable path fails at once instead of after minutes of work. */
+void checkMrptOutputs(const cli::Args& args);
+
+/** Writes every requested output. */
+void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found);
+
+/** Same, from the tags alone (tests, tools without a pipeline run). */
+void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
+					  const std::vector<TagDetection>& tags);
+
+}  // namespace tagmap::app

@@ -1,0 +1,34 @@
+// The `--ini` output: a [MetricMap] block (mrpt::maps::CMultiMetricMap /
+// TSetOfMetricMapInitializers format) that stock MRPT apps such as
+// pf-localization and ro-localization load as-is. The tags become a
+// CLandmarksMap of beacons ("landmarksMap" with nBeacons / beacon_%03u_ID,x,y,z
+// keys, MRPT 2.5's CLandmarksMap::TMapDefinition), keyed by beacon_id.h.
+// A second map "tagMap" carries the full tags for the tagmap plugin; stock
+// MRPT skips it because no class registers that name until the plugin loads.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tagmap/tag_detection.h"
+
+namespace tagmap::mrpt_bridge
+{
+struct MetricMapIniParams
+{
+	std::string sectionName = "MetricMap";  // the apps read "[MetricMap]"
+	double beaconRangesStd = 0.08;  // metres; CLandmarksMap's default
+	bool includeTagMap = true;
+	/** Extra keys for the tagMap's "_detectionOpts" section (the plugin's
+	 *  detection parameters), written verbatim as key=value. */
+	std::vector<std::pair<std::string, std::string>> tagMapDetectionOptions;
+};
+
+std::string metricMapIni(const std::vector<TagDetection>& tags, const MetricMapIniParams& params = {});
+
+/** metricMapIni() written atomically. */
+void writeMetricMapIni(const std::string& path, const std::vector<TagDetection>& tags,
+					   const MetricMapIniParams& params = {});
+
+}  // namespace tagmap::mrpt_bridge

@@ -1,0 +1,48 @@
+#include "tagmap/mrpt/intensity_cloud.h"
+
+#include <mrpt/img/color_maps.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace tagmap::mrpt_bridge
+{
+namespace
+{
+std::pair<float, float> percentileRange(const mrpt::aligned_std_vector<float>& values)
+{
+	if (values.empty()) return {0.f, 1.f};
+	std::vector<float> v(values.begin(), values.end());
+	const auto at = [&](double q) {
+		auto it = v.begin() + static_cast<long>(q * static_cast<double>(v.size() - 1));
+		std::nth_element(v.begin(), it, v.end());
+		return *it;
+	};
+	const float lo = at(0.01), hi = at(0.99);
+	return {lo, hi > lo ? hi : lo + 1.f};
+}
+}  // namespace
+
+mrpt::opengl::CPointCloudColoured::Ptr makeIntensityCloud(const mrpt::maps::CPointsMapXYZI& map,
+														   const IntensityCloudParams& params)
+{
+	auto cloud = mrpt::opengl::CPointCloudColoured::Create();
+	cloud->setPointSize(params.pointSize);
+	const auto& xs = map.getPointsBufferRef_x();
+	const auto& ys = map.getPointsBufferRef_y();
+	const auto& zs = map.getPointsBufferRef_z();
+	const auto& is = map.getPointsBufferRef_intensity();
+	const size_t n = xs.size();
+	const size_t step = params.maxPoints > 0 ? std::max<size_t>(1, (n + params.maxPoints - 1) / params.maxPoints) : 1;
+	const auto [lo, hi] = percentileRange(is);
+	for (size_t i = 0; i < n; i += step)
+	{
+		const float t = std::clamp((is[i] - lo) / (hi - lo), 0.f, 1.f);
+		float r, g, b;
+		mrpt::img::jet2rgb(t, r, g, b);
+		cloud->push_back(xs[i], ys[i], zs[i], r, g, b);
+	}
+	return cloud;
+}
+
+}  // namespace tagmap::mrpt_bridge

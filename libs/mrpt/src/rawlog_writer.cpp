@@ -1,0 +1,23 @@
+#include "tagmap/mrpt/rawlog_writer.h"
+
+#include <mrpt/obs/CObservation3DScene.h>
+#include <mrpt/system/datetime.h>
+
+#include "tagmap/mrpt/serialize_gz.h"
+
+namespace tagmap::mrpt_bridge
+{
+void writeTagRawlog(const std::string& path, const mrpt::maps::CPointsMapXYZI& map,
+					const std::vector<TagDetection>& tags, const RawlogParams& params)
+{
+	auto obs = mrpt::obs::CObservation3DScene::Create();
+	obs->sensorLabel = params.sensorLabel;
+	obs->timestamp = mrpt::Clock::now();
+	obs->scene = buildTagScene(map, tags, params.scene);
+
+	std::vector<mrpt::serialization::CSerializable::Ptr> objects{obs};
+	objects.insert(objects.end(), params.extraObjects.begin(), params.extraObjects.end());
+	writeSerializableSequenceGz(path, objects);
+}
+
+}  // namespace tagmap::mrpt_bridge

@@ -1,0 +1,80 @@
+// tagmap::maps::CTagMap: a map of fiducial tags as a first-class MRPT metric
+// map. It lives in the tagmap MRPT plugin (libtagmap_mrpt_plugin.so); loading
+// the plugin (RawLogViewer -l, dlopen, or linking it) registers the class for
+// deserialization and the name "tagMap" for [MetricMap] ini files.
+//
+//  - insertObservation(): LiDAR observations with intensity accumulate points;
+//    tags are detected on demand (tags()) by tagmap::Pipeline.
+//  - computeObservationLikelihood(): CObservationBeaconRanges against the tag
+//    centres, beacon IDs as in tagmap/mrpt/beacon_id.h (as CLandmarksMap does).
+//  - getVisualizationInto(): tags with their real bitmaps, labels, axes, and
+//    optionally the points coloured by intensity.
+//  - asString(): a table family / id / size / position / roll-pitch-yaw.
+#pragma once
+
+#include <mrpt/maps/CMetricMap.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
+
+#include <vector>
+
+#include "tagmap/maps/tag_map_options.h"
+#include "tagmap/tag_detection.h"
+
+namespace tagmap::maps
+{
+class CTagMap : public mrpt::maps::CMetricMap
+{
+	DEFINE_SERIALIZABLE(CTagMap, tagmap::maps)
+
+   public:
+	CTagMap() = default;
+
+	TTagDetectionOptions detectionOptions;
+	TTagLikelihoodOptions likelihoodOptions;
+	TTagVisualOptions visualOptions;
+
+	/** The tags; runs detection first if points were inserted since the last
+	 *  detection (so it may take a while on a large map). */
+	const std::vector<TagDetection>& tags() const;
+
+	/** Replaces the tags (e.g. with a `tagmap detect` result). */
+	void setTags(std::vector<TagDetection> tags);
+
+	/** Points accumulated by insertObservation(), in the map frame. */
+	const mrpt::maps::CPointsMapXYZI& points() const { return m_points; }
+	void setPoints(const mrpt::maps::CPointsMapXYZI& points);
+
+	/** Runs detection on the accumulated points now. */
+	void detectTags() const;
+
+	// CMetricMap
+	bool isEmpty() const override;
+	/** Writes <prefix>_tags.json (CONVENTIONS result schema). */
+	void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
+	// Visualizable
+	void getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const override;
+	// Stringifyable
+	std::string asString() const override;
+
+	MAP_DEFINITION_START(CTagMap)
+	std::vector<TagDetection> initialTags;  // "<prefix>_creationOpts": tag_count, tag_%03u_* (tagmap/mrpt/tags_ini.h)
+	TTagDetectionOptions detectionOpts;  // "<prefix>_detectionOpts"
+	TTagLikelihoodOptions likelihoodOpts;  // "<prefix>_likelihoodOpts"
+	TTagVisualOptions visualOpts;  // "<prefix>_visualOpts"
+	MAP_DEFINITION_END(CTagMap)
+
+   private:
+	mrpt::maps::CPointsMapXYZI m_points;
+	// Detection is lazy, so a const map can still bring its tags up to date.
+	mutable std::vector<TagDetection> m_tags;
+	mutable bool m_tagsStale = false;
+
+	void internal_clear() override;
+	bool internal_insertObservation(const mrpt::obs::CObservation& obs,
+									const std::optional<const mrpt::poses::CPose3D>& robotPose) override;
+	double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
+												 const mrpt::poses::CPose3D& takenFrom) const override;
+	bool internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const override;
+};
+
+}  // namespace tagmap::maps
