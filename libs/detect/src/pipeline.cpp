@@ -6,6 +6,7 @@
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
 #include "tagmap/intensity_gradient.h"
+#include "tagmap/image_variants.h"
 #include "tagmap/intermediate_plane.h"
 #include "tagmap/merge_detections.h"
 #include "tagmap/octree_gather.h"
@@ -146,25 +147,28 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 				rep.verdict = "not_planar";
 				continue;
 			}
-			const std::vector<DecodedTag2D> decoded = decoder.decode(plane.gray);
-			if (keepImages)
+			if (keepImages) rep.image = plane.gray;
+			for (const ImageVariant& variant : makeImageVariants(plane.gray, params_.imageVariants))
 			{
-				rep.image = plane.gray;
-				rep.decoded = decoded;
-			}
-			for (const DecodedTag2D& d : decoded)
-			{
-				TagDetection t = solveTagPose(d, plane, params_.tagSize);
-				PatternRefinementParams rp = params_.refinement;
-				rp.estimateSize = params_.tagSize <= 0;
-				if (!refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp))
+				std::vector<DecodedTag2D> decoded = decoder.decode(variant.gray);
+				for (DecodedTag2D& d : decoded)
+					for (auto& c : d.corners) c *= variant.scale;
+				if (keepImages) rep.decoded.insert(rep.decoded.end(), decoded.begin(), decoded.end());
+				for (const DecodedTag2D& d : decoded)
 				{
-					rep.verdict = "pattern_mismatch";
-					continue;
+					TagDetection t = solveTagPose(d, plane, params_.tagSize);
+					PatternRefinementParams rp = params_.refinement;
+					rp.estimateSize = params_.tagSize <= 0;
+					if (!refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp))
+					{
+						if (rep.verdict != "decoded") rep.verdict = "pattern_mismatch";
+						continue;
+					}
+					rep.verdict = "decoded";
+					if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
+					perCandidate[k].push_back(std::move(t));
 				}
-				rep.verdict = "decoded";
-				if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
-				perCandidate[k].push_back(std::move(t));
+				if (!perCandidate[k].empty()) break;  // verified: no need for other variants
 			}
 			std::lock_guard<std::mutex> lock(progressMutex);
 			report("decode", ++finished, candidates.size());

@@ -70,7 +70,7 @@ void loadSection(const mrpt::containers::yaml& node, const std::string& section,
 	{
 		const std::string key = k.as<std::string>();
 		const std::string where = section.empty() ? key : section + "." + key;
-		if (section.empty() && (all.count(key) || key == "families")) continue;
+		if (section.empty() && (all.count(key) || key == "families" || key == "image_variants")) continue;
 		auto it = keys.find(key);
 		if (it == keys.end()) throw std::invalid_argument("unknown parameter '" + where + "'");
 		try
@@ -108,6 +108,12 @@ PipelineParams PipelineParams::fromYaml(const mrpt::containers::yaml& y)
 			list = f.as<std::string>();
 		p.families = list.empty() ? std::vector<std::string>{} : parseFamilyList(list);
 	}
+	if (y.has("image_variants"))
+	{
+		if (!y["image_variants"].isSequence()) throw std::invalid_argument("image_variants must be a list");
+		p.imageVariants.clear();
+		for (const auto& e : y["image_variants"].asSequence()) p.imageVariants.push_back(e.as<std::string>());
+	}
 	p.validate();
 	return p;
 }
@@ -143,6 +149,9 @@ mrpt::containers::yaml PipelineParams::toYaml() const
 	mrpt::containers::yaml fams = mrpt::containers::yaml::Sequence();
 	for (const auto& f : families) fams.push_back(f);
 	y["families"] = fams;
+	mrpt::containers::yaml variants = mrpt::containers::yaml::Sequence();
+	for (const auto& v : imageVariants) variants.push_back(v);
+	y["image_variants"] = variants;
 	for (auto& [section, keys] : all)
 	{
 		if (!section.empty()) y[section] = mrpt::containers::yaml::Map();
@@ -180,6 +189,9 @@ void PipelineParams::validate() const
 	positive(plane.splatSpacings, "plane.splat_spacings");
 	if (plane.maxImagePixels < 32) throw std::invalid_argument("plane.max_image_pixels must be at least 32");
 	if (gather.octreeCellsPerLeaf < 1) throw std::invalid_argument("gather.octree_cells_per_leaf must be at least 1");
+	for (const auto& v : imageVariants)
+		if (v != "raw" && v != "otsu" && v != "half")
+			throw std::invalid_argument("image_variants: unknown variant '" + v + "' (valid: raw, otsu, half)");
 	if (decoder.maxBitsCorrected < 0 || decoder.maxBitsCorrected > 3)
 		throw std::invalid_argument("decoder.max_bits_corrected must be 0..3");
 }

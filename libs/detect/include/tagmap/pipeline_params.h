@@ -29,6 +29,9 @@ struct PipelineParams
 	/** Gradient neighbourhood radius, in point spacings. */
 	double gradientRadiusSpacings = 2.5;
 
+	/** Image preparations tried in order (see image_variants.h). */
+	std::vector<std::string> imageVariants = {"raw", "otsu", "half"};
+
 	PointSpacingParams spacing;
 	IntensityGradientParams gradient;
 	ClusteringParams clustering;
