@@ -107,7 +107,7 @@ SceneObject parseDistractor(const YamlReader& r)
 
 TagSpec parseTag(const YamlReader& r)
 {
-	r.allowKeys(withPose({"family", "id", "size", "margin", "jitter_deg", "paper_offset", "black", "white"}));
+	r.allowKeys(withPose({"family", "id", "size", "margin", "jitter_deg", "paper_offset", "black", "white", "board"}));
 	TagSpec t;
 	t.family = r.text("family");
 	t.id = r.integer("id", 0);
@@ -125,6 +125,18 @@ TagSpec parseTag(const YamlReader& r)
 	t.margin = r.positive("margin", t.margin, true);
 	t.jitterDeg = r.positive("jitter_deg", 0, true);
 	t.paperOffset = r.positive("paper_offset", t.paperOffset, true);
+	if (r.has("board"))
+	{
+		const YamlReader b = r.child("board");
+		b.allowKeys({"size", "standoff", "reflectivity"});
+		const auto sz = b.numbers("size", 2);
+		t.boardWidth = sz[0];
+		t.boardHeight = sz[1];
+		const double patternHalf = 0.5 * t.size * renderTagBitmap(t.family, t.id).cells / findFamily(t.family)->borderCells;
+		if (std::min(sz[0], sz[1]) < 2 * patternHalf) b.child("size").fail("board is smaller than the printed tag");
+		t.boardStandoff = b.positive("standoff", t.boardStandoff);
+		t.boardReflectivity = reflectivity(b, "reflectivity", t.boardReflectivity);
+	}
 	t.black = reflectivity(r, "black", t.black);
 	t.white = reflectivity(r, "white", t.white);
 	return t;
@@ -210,32 +222,11 @@ Scene parseTree(const mrpt::containers::yaml& doc, const std::string& file, cons
 	return s;
 }
 
-mrpt::containers::yaml parseYaml(const std::string& text, const std::string& file)
-{
-	try
-	{
-		return mrpt::containers::yaml::FromText(text);
-	}
-	catch (const std::exception& e)
-	{
-		// MRPT messages span several lines; keep the first meaningful one.
-		std::string msg = e.what();
-		std::istringstream ss(msg);
-		std::string line, best;
-		while (std::getline(ss, line))
-			if (!line.empty() && line.find("==") == std::string::npos)
-			{
-				best = line;
-				if (line.find("line") != std::string::npos || line.find("rror") != std::string::npos) break;
-			}
-		throw InputError(file, "", "not valid YAML: " + best);
-	}
-}
 }  // namespace
 
 Scene parseScene(const std::string& yamlText, const std::string& sourceName, const SceneParameters& overrides)
 {
-	return parseTree(parseYaml(yamlText, sourceName), sourceName, overrides);
+	return parseTree(parseYamlText(yamlText, sourceName), sourceName, overrides);
 }
 
 Scene loadScene(const std::string& path, const SceneParameters& overrides)

@@ -8,6 +8,11 @@
 
 namespace tagmap::sim
 {
+namespace
+{
+bool hasBoard(const TagSpec& s) { return s.boardWidth > 0 && s.boardHeight > 0; }
+}  // namespace
+
 Eigen::Isometry3d printedTagPose(const TagSpec& spec, uint64_t seed, size_t tagIndex)
 {
 	Eigen::Isometry3d T = spec.pose;
@@ -16,12 +21,13 @@ Eigen::Isometry3d printedTagPose(const TagSpec& spec, uint64_t seed, size_t tagI
 		Rng rng(streamSeed(seed, kStreamScene, tagIndex));
 		std::uniform_real_distribution<double> u(-spec.jitterDeg * M_PI / 180, spec.jitterDeg * M_PI / 180);
 		const double rx = u(rng), ry = u(rng), rz = u(rng);
+		const bool tilt = hasBoard(spec);
 		T.linear() = T.linear() * (Eigen::AngleAxisd(rz, Eigen::Vector3d::UnitZ()) *
-								   Eigen::AngleAxisd(ry, Eigen::Vector3d::UnitY()) *
-								   Eigen::AngleAxisd(rx, Eigen::Vector3d::UnitX()))
+								   Eigen::AngleAxisd(tilt ? ry : 0.0, Eigen::Vector3d::UnitY()) *
+								   Eigen::AngleAxisd(tilt ? rx : 0.0, Eigen::Vector3d::UnitX()))
 									  .toRotationMatrix();
 	}
-	T.translate(Eigen::Vector3d(0, 0, spec.paperOffset));
+	T.translate(Eigen::Vector3d(0, 0, (hasBoard(spec) ? spec.boardStandoff : 0.0) + spec.paperOffset));
 	return T;
 }
 
@@ -48,6 +54,37 @@ SceneObject makeTagPaper(const TagSpec& spec, const Eigen::Isometry3d& printedPo
 	o.name = spec.family + ":" + std::to_string(spec.id);
 	o.kind = ObjectKind::Tag;
 	o.faces.push_back(std::move(r));
+	if (hasBoard(spec))
+	{
+		// The board's front face, just behind the paper, and its four edges
+		// reaching back to the wall (a slab `boardStandoff` thick).
+		const double hw = 0.5 * spec.boardWidth, hh = 0.5 * spec.boardHeight, t = spec.boardStandoff;
+		Eigen::Isometry3d front = printedPose;
+		front.translate(Eigen::Vector3d(0, 0, -spec.paperOffset));
+		Rect face;
+		face.pose = front;
+		face.halfW = hw;
+		face.halfH = hh;
+		face.texture.base = spec.boardReflectivity;
+		o.faces.push_back(face);
+		for (int axis = 0; axis < 2; axis++)
+			for (int sgn : {-1, 1})
+			{
+				Eigen::Matrix3d R;  // edge frame: normal along +-x (or +-y) of the board
+				const Eigen::Vector3d n = sgn * Eigen::Vector3d::Unit(axis);
+				R.col(2) = n;
+				R.col(1) = Eigen::Vector3d::UnitZ();
+				R.col(0) = R.col(1).cross(R.col(2));
+				Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
+				local.linear() = R;
+				local.translation() = n * (axis == 0 ? hw : hh) + Eigen::Vector3d(0, 0, -0.5 * t);
+				Rect edge = face;
+				edge.pose = front * local;
+				edge.halfW = axis == 0 ? hh : hw;
+				edge.halfH = 0.5 * t;
+				o.faces.push_back(edge);
+			}
+	}
 	return o;
 }
 

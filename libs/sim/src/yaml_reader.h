@@ -14,6 +14,10 @@
 
 namespace tagmap::sim
 {
+/** Parses YAML text; syntax errors -> InputError "<file>: not valid YAML:
+ *  line L, column C: <reason>". */
+mrpt::containers::yaml parseYamlText(const std::string& text, const std::string& file);
+
 class YamlReader
 {
    public:

@@ -51,7 +51,14 @@ struct TagSpec
 	Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // T_G_tag of the mounting surface
 	double margin = 0.01;  // white paper beyond the bitmap's quiet-zone cell, metres
 	double paperOffset = 1e-4;  // paper thickness/standoff from the wall, metres
-	double jitterDeg = 0;  // random tilt (from the seed) around the tag centre, degrees
+	/** Random turn (from the seed) about the tag centre, degrees: in-plane
+	 *  only for a tag stuck to a wall (it cannot tilt into it); about all
+	 *  three axes when it is mounted on a board. */
+	double jitterDeg = 0;
+	/** Optional backing board (foam board) standing `boardStandoff` in front
+	 *  of the mounting surface; the paper is glued on its front. */
+	double boardWidth = 0, boardHeight = 0, boardStandoff = 0.02;
+	float boardReflectivity = 0.6f;
 	float black = 0.06f, white = 0.85f;  // ink / paper reflectivity
 };
 
