@@ -17,14 +17,15 @@ namespace
 struct Binding
 {
 	std::function<void(const mrpt::containers::yaml&)> load;
-	std::function<void(mrpt::containers::yaml&)> dump;
+	// Writes map[key]: MRPT's yaml only accepts a scalar through a map proxy.
+	std::function<void(mrpt::containers::yaml& map, const std::string& key)> dump;
 };
 
 template <typename T>
 Binding bind(T& field)
 {
 	return {[&field](const mrpt::containers::yaml& v) { field = v.as<T>(); },
-			[&field](mrpt::containers::yaml& v) { v = field; }};
+			[&field](mrpt::containers::yaml& map, const std::string& key) { map[key] = field; }};
 }
 
 std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p)
@@ -154,16 +155,9 @@ mrpt::containers::yaml PipelineParams::toYaml() const
 	y["image_variants"] = variants;
 	for (auto& [section, keys] : all)
 	{
-		if (!section.empty()) y[section] = mrpt::containers::yaml::Map();
-		for (auto& [k, b] : keys)
-		{
-			mrpt::containers::yaml v;
-			b.dump(v);
-			if (section.empty())
-				y[k] = v;
-			else
-				y[section][k] = v;
-		}
+		mrpt::containers::yaml sub = mrpt::containers::yaml::Map();
+		for (auto& [k, b] : keys) b.dump(section.empty() ? y : sub, k);
+		if (!section.empty()) y[section] = sub;
 	}
 	return y;
 }
