@@ -9,11 +9,7 @@
 #include "tagmap/mrpt/rawlog_writer.h"
 #include "tagmap/mrpt/serialize_gz.h"
 #include "tagmap/mrpt/tag_scene.h"
-
-#if __has_include("tagmap/pipeline_params.h")
 #include "tagmap/pipeline.h"
-#define TAGMAP_HAVE_PIPELINE 1
-#endif
 
 namespace tagmap::app
 {
@@ -81,11 +77,9 @@ void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& m
 	}
 }
 
-#ifdef TAGMAP_HAVE_PIPELINE
 void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found)
 {
 	writeMrptOutputs(args, map, found.tags);
 }
-#endif
 
 }  // namespace tagmap::app

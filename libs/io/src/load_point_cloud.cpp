@@ -30,13 +30,14 @@ Reader readerFor(const std::string& path)
 	if (ext == ".bin") return detail::readKitti;
 	if (ext == ".xyzi" || ext == ".txt" || ext == ".xyz") return detail::readXyziText;
 	if (ext == ".simplemap") return detail::readSimplemap;
+	if (ext == ".rawlog") return detail::readRawlog;
 	throw InputError(path, "",
 					 (ext.empty() ? std::string("no file extension") : "unknown file extension '" + ext + "'") + "; supported: " + supportedExtensions());
 }
 
 }  // namespace
 
-const char* supportedExtensions() { return ".pcd .ply .bin (KITTI) .xyzi .txt .xyz .simplemap"; }
+const char* supportedExtensions() { return ".pcd .ply .bin (KITTI) .xyzi .txt .xyz .simplemap .rawlog"; }
 
 void loadPointCloud(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport* report)
 {

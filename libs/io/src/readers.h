@@ -15,5 +15,6 @@ void readPly(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadRepor
 void readKitti(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 void readXyziText(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 void readSimplemap(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
+void readRawlog(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 
 }  // namespace tagmap::io::detail
