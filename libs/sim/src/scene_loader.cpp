@@ -132,8 +132,7 @@ TagSpec parseTag(const YamlReader& r)
 		const auto sz = b.numbers("size", 2);
 		t.boardWidth = sz[0];
 		t.boardHeight = sz[1];
-		const double patternHalf = 0.5 * t.size * renderTagBitmap(t.family, t.id).cells / findFamily(t.family)->borderCells;
-		if (std::min(sz[0], sz[1]) < 2 * patternHalf) b.child("size").fail("board is smaller than the printed tag");
+		if (std::min(sz[0], sz[1]) < t.size) b.child("size").fail("board is smaller than the tag");
 		t.boardStandoff = b.positive("standoff", t.boardStandoff);
 		t.boardReflectivity = reflectivity(b, "reflectivity", t.boardReflectivity);
 	}
