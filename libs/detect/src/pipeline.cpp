@@ -157,9 +157,12 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 				for (const DecodedTag2D& d : decoded)
 				{
 					TagDetection t = solveTagPose(d, plane, params_.tagSize);
+					refitTagPlane(t, plane, m.xs, m.ys, m.zs);
 					PatternRefinementParams rp = params_.refinement;
 					rp.estimateSize = params_.tagSize <= 0;
-					if (!refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp))
+					const bool fits = refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp);
+					if (fits) refitTagPlane(t, plane, m.xs, m.ys, m.zs);
+					if (!fits)
 					{
 						if (rep.verdict != "decoded") rep.verdict = "pattern_mismatch";
 						continue;

@@ -42,6 +42,7 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		 {{"min_tag_size", bind(p.candidates.minTagSize)},
 		  {"max_tag_size", bind(p.candidates.maxTagSize)},
 		  {"max_aspect", bind(p.candidates.maxAspect)},
+		  {"max_oversize", bind(p.candidates.maxOversize)},
 		  {"shortfall", bind(p.candidates.shortfall)},
 		  {"max_flatness", bind(p.candidates.maxFlatness)}}},
 		{"gather",
@@ -177,6 +178,7 @@ void PipelineParams::validate() const
 	positive(candidates.maxTagSize, "candidates.max_tag_size");
 	if (candidates.maxTagSize < candidates.minTagSize)
 		throw std::invalid_argument("candidates.max_tag_size must be at least candidates.min_tag_size");
+	if (candidates.maxOversize < 1) throw std::invalid_argument("candidates.max_oversize must be at least 1");
 	if (candidates.maxAspect < 1) throw std::invalid_argument("candidates.max_aspect must be at least 1");
 	positive(gather.enlarge, "gather.enlarge");
 	positive(plane.pixelSpacings, "plane.pixel_spacings");
@@ -188,6 +190,22 @@ void PipelineParams::validate() const
 			throw std::invalid_argument("image_variants: unknown variant '" + v + "' (valid: raw, otsu, half)");
 	if (decoder.maxBitsCorrected < 0 || decoder.maxBitsCorrected > 3)
 		throw std::invalid_argument("decoder.max_bits_corrected must be 0..3");
+	// The rest, unchecked, would give silently empty results at best, and
+	// unbounded loops, thread counts or allocations at worst.
+	if (threads > 1024) throw std::invalid_argument("threads must be 0 (all cores) to 1024");
+	if (gradient.minNeighbours < 0) throw std::invalid_argument("gradient.min_neighbours must be >= 0");
+	if (clustering.minPoints < 1 || clustering.minPoints > (1u << 30))
+		throw std::invalid_argument("clustering.min_points must be 1..2^30");
+	if (!(candidates.shortfall >= 0 && candidates.shortfall < 1))
+		throw std::invalid_argument("candidates.shortfall must be in [0, 1)");
+	positive(candidates.maxFlatness, "candidates.max_flatness");
+	positive(gather.slabSpacings, "gather.slab_spacings");
+	positive(plane.inlierSigmas, "plane.inlier_sigmas");
+	if (!(decoder.minDecisionMargin >= 0)) throw std::invalid_argument("decoder.min_decision_margin must be >= 0");
+	if (!(refinement.minPatternFit >= 0 && refinement.minPatternFit <= 1))
+		throw std::invalid_argument("refinement.min_pattern_fit must be in [0, 1]");
+	if (refinement.iterations < 0 || refinement.iterations > 1000)
+		throw std::invalid_argument("refinement.iterations must be 0..1000");
 }
 
 }  // namespace tagmap

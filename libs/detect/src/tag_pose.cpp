@@ -1,6 +1,9 @@
 #include "tagmap/tag_pose.h"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
+
+#include "tagmap/point_stats.h"
 
 namespace tagmap
 {
@@ -48,6 +51,54 @@ TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, 
 	t.covariance = tagFrameCovarianceToMap(t.pose.linear(), Eigen::Vector3d(sc / 2, sc / 2, sPlane),
 										   Eigen::Vector3d(sTilt, sTilt, sc / (t.size * std::sqrt(2.0))));
 	return t;
+}
+
+void refitTagPlane(TagDetection& t, const PlaneImage& plane, const float* xs, const float* ys, const float* zs)
+{
+	const Eigen::Isometry3d inv = t.pose.inverse();
+	const double half = 0.5 * t.size;
+	std::vector<uint32_t> on;
+	std::vector<double> depth;
+	for (uint32_t i : plane.inliers)
+	{
+		const Eigen::Vector3d l = inv * Eigen::Vector3d(xs[i], ys[i], zs[i]);
+		if (std::abs(l.x()) <= half && std::abs(l.y()) <= half) on.push_back(i);
+	}
+	if (on.size() < 20) return;
+	PointStats st;
+	Eigen::Vector3d n = t.pose.linear().col(2);
+	double rms = 0;
+	// Two trimmed rounds: drop the few mixed-pixel points beyond 3 sigma.
+	for (int round = 0; round < 2; round++)
+	{
+		st = pointStats(xs, ys, zs, on);
+		Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(st.scatter);
+		n = es.eigenvectors().col(0);
+		if (n.dot(t.pose.linear().col(2)) < 0) n = -n;
+		rms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / static_cast<double>(on.size()));
+		std::vector<uint32_t> kept;
+		for (uint32_t i : on)
+			if (std::abs((Eigen::Vector3d(xs[i], ys[i], zs[i]) - st.mean).dot(n)) <= 3 * rms + 1e-9) kept.push_back(i);
+		if (kept.size() < 20) break;
+		on.swap(kept);
+	}
+	// Smallest rotation taking the old normal onto the new one; the centre
+	// moves along the normal onto the new plane.
+	const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(t.pose.linear().col(2), n).toRotationMatrix();
+	t.pose.linear() = R * t.pose.linear();
+	const Eigen::Vector3d c = t.pose.translation();
+	t.pose.translation() = c - n * n.dot(c - st.mean);
+	t.corners = cornersFromPose(t.pose, t.size);
+	t.pointsUsed = static_cast<int>(on.size());
+	const double N = static_cast<double>(on.size());
+	const double sTilt = rms / (0.5 * t.size * std::sqrt(N / 3.0));
+	const Eigen::Matrix3d Rt = t.pose.linear();
+	Eigen::Matrix3d Ct = Rt.transpose() * t.covariance.topLeftCorner<3, 3>() * Rt;
+	Ct(2, 2) = rms * rms / N;
+	t.covariance.topLeftCorner<3, 3>() = Rt * Ct * Rt.transpose();
+	Eigen::Matrix3d Cr = Rt.transpose() * t.covariance.bottomRightCorner<3, 3>() * Rt;
+	Cr(0, 0) = Cr(1, 1) = sTilt * sTilt;
+	t.covariance.bottomRightCorner<3, 3>() = Rt * Cr * Rt.transpose();
 }
 
 }  // namespace tagmap

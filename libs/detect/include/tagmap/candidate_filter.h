@@ -20,6 +20,11 @@ struct CandidateFilterParams
 	/** A tag's edge points may miss part of the border (sparse or occluded
 	 *  scans): accept a box this much smaller than the smallest tag. */
 	double shortfall = 0.15;
+	/** Upper size bound, as a multiple of the paper's (2a): a tag printed on
+	 *  a board or poster with contrasty edges clusters together with them,
+	 *  and such a box still holds the tag. Decoding and the pattern check
+	 *  reject what is not a tag, so a generous bound costs only time. */
+	double maxOversize = 2.0;
 	/** Flatness: box height at most this fraction of its width (plus noise). */
 	double maxFlatness = 0.35;
 };

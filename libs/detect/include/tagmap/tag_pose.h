@@ -14,6 +14,13 @@ namespace tagmap
  *  corner order (z = x_tag cross y_tag), so mirrored reads come out right. */
 TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, double knownSize);
 
+/** Re-fits the tag plane from the points inside the tag's own border
+ *  square only, and tilts the pose onto it (keeping its in-plane position).
+ *  The candidate plane also holds the surface around the tag; a tag on a
+ *  board standing off a wall, or slightly tilted, would be biased towards
+ *  that surface. Updates pose, corners, pointsUsed and the tilt covariance. */
+void refitTagPlane(TagDetection& t, const PlaneImage& plane, const float* xs, const float* ys, const float* zs);
+
 /** Covariance of [x y z | rx ry rz] in the map frame from in-plane and
  *  out-of-plane standard deviations expressed in the tag frame. */
 Eigen::Matrix<double, 6, 6> tagFrameCovarianceToMap(const Eigen::Matrix3d& R_G_tag, const Eigen::Vector3d& sigmaT,
