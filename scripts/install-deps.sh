@@ -12,6 +12,7 @@ PACKAGES=(
   liboctomap-dev
   libgtest-dev googletest
   xvfb xauth imagemagick
+  chromium                 # tests/report: the HTML report opened in a headless browser
 )
 
 missing=()

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 
 namespace tagmap::cli
 {
@@ -67,6 +68,24 @@ Args parse(int argc, char** argv, int first, const std::set<std::string>& valueO
 			a.positional.push_back(s);
 	}
 	return a;
+}
+
+int runCommand(const char* name, const std::function<int()>& body)
+{
+	try
+	{
+		return body();
+	}
+	catch (const UsageError& e)
+	{
+		std::cerr << "tagmap " << name << ": " << e.what() << " (see tagmap " << name << " --help)\n";
+		return 2;
+	}
+	catch (const std::exception& e)
+	{
+		std::cerr << "tagmap " << name << ": " << e.what() << "\n";
+		return 1;
+	}
 }
 
 }  // namespace tagmap::cli

@@ -2,6 +2,7 @@
 // "--flag value" options and boolean switches, with one-line errors.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -33,5 +34,10 @@ struct Args
  *  and missing values throw UsageError. */
 Args parse(int argc, char** argv, int first, const std::set<std::string>& valueOptions,
 		   const std::set<std::string>& switchOptions);
+
+/** Runs a sub-command's `body` and turns its errors into the exit status:
+ *  UsageError -> "tagmap NAME: what (see tagmap NAME --help)", 2; any other
+ *  exception -> "tagmap NAME: what", 1. Every command reports errors alike. */
+int runCommand(const char* name, const std::function<int()>& body);
 
 }  // namespace tagmap::cli

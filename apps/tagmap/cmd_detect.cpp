@@ -5,36 +5,49 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "pipeline_args.h"
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
 #include "tagmap/io/point_cloud_io.h"
 #include "tagmap/pipeline.h"
-#include "tagmap/tag_family.h"
+#include "tagmap/report/progress_printer.h"
+#include "tagmap/report/report_writer.h"
 #include "tagmap/tags_json.h"
 
 namespace tagmap::app
 {
 namespace
 {
-const char* kUsage =
-	"Usage: tagmap detect INPUT --json OUT [options]\n"
-	"\n"
-	"Finds fiducial tags (AprilTag, ArUco) in a 3D LiDAR map with intensity and\n"
-	"writes each tag's family, id, size, 4 indexed corners and 6-DoF pose.\n"
-	"\n"
-	"INPUT: .pcd (ascii/binary/binary_compressed), .ply, .bin (KITTI), .xyzi/.txt,\n"
-	"       .simplemap, .rawlog\n"
-	"\n"
-	"Options:\n"
-	"  --json OUT         result file (CONVENTIONS.md schema); written atomically\n"
-	"  --family F[,F...]  families to look for (default: all supported)\n"
-	"  --tag-size S       tag border-square edge in metres (default: any size in\n"
-	"                     [candidates.min_tag_size, candidates.max_tag_size])\n"
-	"  --config FILE      YAML parameters (see share/config/default.yaml); flags win\n"
-	"  --threads N        worker threads (default: all cores); results do not depend on N\n"
-	"  --quiet            print nothing but errors\n"
-	"  --verbose          also print per-stage timings and counts\n"
-	"  --help             this text\n";
+std::string usage()
+{
+	return std::string(
+			   "Usage: tagmap detect INPUT --json OUT [options]\n"
+			   "\n"
+			   "Finds fiducial tags (AprilTag, ArUco) in a 3D LiDAR map with intensity and\n"
+			   "writes each tag's family, id, size, 4 indexed corners and 6-DoF pose.\n"
+			   "\n"
+			   "INPUT: ") +
+		   io::supportedExtensions() +
+		   "\n"
+		   "\n"
+		   "Options:\n"
+		   "  --json OUT         result file (CONVENTIONS.md schema), written atomically (required)\n"
+		   "  --report DIR       also write DIR/index.html: the map with the tags marked, every\n"
+		   "                     candidate's image and why it was rejected, timings (default: none)\n" +
+		   pipelineOptionsHelp() +
+		   "  --quiet            print nothing but errors (default: progress and a table of tags)\n"
+		   "  --verbose          also print per-stage timings and counts\n"
+		   "  --help             this text\n"
+		   "\n"
+		   "Progress goes to stderr: a bar on a terminal, a line every 2 s otherwise.\n";
+}
+
+std::string joinArgs(int argc, char** argv)
+{
+	std::string s = "tagmap";
+	for (int i = 0; i < argc; i++) s += std::string(" ") + argv[i];
+	return s;
+}
 
 void printTable(const Detections& found)
 {
@@ -60,68 +73,63 @@ void printStages(const Detections& found)
 
 int runDetect(int argc, char** argv)
 {
-	try
-	{
-		const cli::Args args = cli::parse(argc, argv, 1, {"--json", "--family", "--tag-size", "--config", "--threads"},
-										  {"--quiet", "--verbose", "--help"});
+	return cli::runCommand("detect", [&] {
+		const cli::Args args =
+			cli::parse(argc, argv, 1, with(pipelineOptions(), {"--json", "--report"}), {"--quiet", "--verbose", "--help"});
 		if (args.has("--help"))
 		{
-			std::cout << kUsage;
+			std::cout << usage();
 			return 0;
 		}
 		if (args.positional.size() != 1) throw cli::UsageError("expected exactly one INPUT file");
 		if (!args.has("--json")) throw cli::UsageError("--json OUT is required");
-		const std::string input = args.positional[0], jsonPath = args.get("--json");
-
-		PipelineParams params = args.has("--config") ? PipelineParams::fromYamlFile(args.get("--config")) : PipelineParams{};
-		if (args.has("--family")) params.families = parseFamilyList(args.get("--family"));
-		if (args.has("--tag-size"))
-		{
-			params.tagSize = args.getDouble("--tag-size", 0);
-			if (!(params.tagSize > 0)) throw cli::UsageError("--tag-size must be a positive length in metres");
-		}
-		if (args.has("--threads"))
-		{
-			const long t = args.getInt("--threads", 0);
-			if (t < 1 || t > 1024) throw cli::UsageError("--threads must be between 1 and 1024");
-			params.threads = static_cast<unsigned>(t);
-		}
+		const std::string input = args.positional[0], jsonPath = args.get("--json"), reportDir = args.get("--report");
+		const PipelineParams params = pipelineParamsFromArgs(args);
 		const bool quiet = args.has("--quiet"), verbose = args.has("--verbose");
 
 		// Fail on an unwritable output now, not after minutes of work.
 		checkOutputWritable(jsonPath);
+		if (!reportDir.empty()) report::checkReportDir(reportDir);
+
+		report::ProgressParams pp;
+		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
+		report::ProgressPrinter progress(pp);
+		progress.update("reading", 0, 0);
 
 		io::LoadReport load;
 		const mrpt::maps::CPointsMapXYZI map = io::loadPointCloud(input, &load);
+		progress.update("reading", map.size(), map.size());
 		if (!quiet)
 		{
 			std::fprintf(stderr, "tagmap: read %zu points from %s (%s, intensity from '%s')", load.pointsKept,
 						 input.c_str(), load.format.c_str(), load.intensityField.c_str());
 			if (load.nonFiniteSkipped) std::fprintf(stderr, ", skipped %zu non-finite", load.nonFiniteSkipped);
+			if (load.outOfRangeSkipped)
+				std::fprintf(stderr, ", skipped %zu out of range (|coordinate| > %g m)", load.outOfRangeSkipped,
+							 static_cast<double>(io::kMaxAbsCoordinate));
 			std::fprintf(stderr, "\n");
 		}
 		const Pipeline pipeline(params);
-		const Detections found = pipeline.detect(map);
+		const Detections found = pipeline.detect(map, progress.callback(), !reportDir.empty());
 		writeTagsJson(jsonPath, found.tags);
+		if (!reportDir.empty())
+		{
+			progress.update("report", 0, 0);
+			report::writeReport(reportDir, {input, load.format + ", intensity from '" + load.intensityField + "'",
+											joinArgs(argc, argv), map, found, params});
+			progress.update("report", 1, 1);
+		}
+		progress.finish();
 		if (!quiet)
 		{
 			printTable(found);
 			std::fprintf(stderr, "tagmap: %zu tag(s) in %.2f s -> %s\n", found.tags.size(), found.totalSeconds,
 						 jsonPath.c_str());
+			if (!reportDir.empty()) std::fprintf(stderr, "tagmap: report -> %s/index.html\n", reportDir.c_str());
 		}
 		if (verbose) printStages(found);
 		return 0;
-	}
-	catch (const cli::UsageError& e)
-	{
-		std::cerr << "tagmap detect: " << e.what() << " (see tagmap detect --help)\n";
-		return 2;
-	}
-	catch (const std::exception& e)
-	{
-		std::cerr << "tagmap detect: " << e.what() << "\n";
-		return 1;
-	}
+	});
 }
 
 }  // namespace tagmap::app

@@ -7,4 +7,5 @@ namespace tagmap::app
 // argv[0] is the sub-command name; return the process exit status.
 int runSimulate(int argc, char** argv);
 int runDetect(int argc, char** argv);
+int runConfig(int argc, char** argv);
 }  // namespace tagmap::app

@@ -1,0 +1,99 @@
+// share/config/default.yaml is the parameters' documentation: these tests
+// keep it equal to the built-in defaults and complete, so it cannot drift.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "tagmap/errors.h"
+#include "tagmap/pipeline_params.h"
+
+using tagmap::PipelineParams;
+
+namespace
+{
+const std::string kDefaultYaml = TAGMAP_SOURCE_DIR "/share/config/default.yaml";
+
+std::string yamlText(const PipelineParams& p)
+{
+	std::ostringstream s;
+	p.toYaml().printAsYAML(s);
+	return s.str();
+}
+
+// The message of the std::invalid_argument that loading `text` throws.
+std::string loadError(const std::string& text)
+{
+	try
+	{
+		PipelineParams::fromYaml(mrpt::containers::yaml::FromText(text));
+	}
+	catch (const std::invalid_argument& e)
+	{
+		return e.what();
+	}
+	return "(no error)";
+}
+}  // namespace
+
+TEST(Config, DefaultYamlEqualsBuiltInDefaults)
+{
+	EXPECT_EQ(yamlText(PipelineParams::fromYamlFile(kDefaultYaml)), yamlText(PipelineParams{}));
+}
+
+TEST(Config, DefaultYamlHasEveryParameterWithAComment)
+{
+	const auto file = mrpt::containers::yaml::FromFile(kDefaultYaml);
+	const auto defaults = PipelineParams{}.toYaml();
+	for (const auto& [k, v] : defaults.asMap())
+	{
+		const std::string key = k.as<std::string>();
+		ASSERT_TRUE(file.has(key)) << key << " missing from default.yaml";
+		if (!v.isMap()) continue;
+		for (const auto& [k2, v2] : v.asMap())
+			EXPECT_TRUE(file[key].has(k2.as<std::string>())) << key << "." << k2.as<std::string>() << " missing";
+	}
+	// Every "key: value" line follows a comment line that explains it.
+	std::ifstream in(kDefaultYaml);
+	std::string line, previous;
+	const std::regex keyValue(R"(^\s*[a-z_]+:\s*\S.*$)"), comment(R"(^\s*#.*$)");
+	while (std::getline(in, line))
+	{
+		if (std::regex_match(line, keyValue))
+		{
+			EXPECT_TRUE(std::regex_match(previous, comment)) << "no comment above: " << line;
+		}
+		previous = line;
+	}
+}
+
+TEST(Config, UnknownKeyIsNamed)
+{
+	EXPECT_EQ(loadError("gradient:\n  treshold: 0.2\n"), "unknown parameter 'gradient.treshold'");
+	EXPECT_EQ(loadError("tag_sise: 0.2\n"), "unknown parameter 'tag_sise'");
+}
+
+TEST(Config, BadValueIsNamed)
+{
+	EXPECT_EQ(loadError("clustering:\n  min_points: many\n"), "parameter 'clustering.min_points' has an invalid value");
+	EXPECT_NE(loadError("candidates:\n  max_aspect: 0.5\n").find("candidates.max_aspect"), std::string::npos);
+	EXPECT_NE(loadError("families: [tag99h99]\n").find("tag99h99"), std::string::npos);
+}
+
+TEST(Config, FileErrorsNameTheFile)
+{
+	const std::string path = ::testing::TempDir() + "/tagmap_bad_config.yaml";
+	std::ofstream(path) << "decoder:\n  max_bits_corrected: 7\n";
+	try
+	{
+		PipelineParams::fromYamlFile(path);
+		FAIL() << "no error";
+	}
+	catch (const tagmap::InputError& e)
+	{
+		const std::string msg = e.what();
+		EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
+		EXPECT_NE(msg.find("decoder.max_bits_corrected"), std::string::npos) << msg;
+	}
+}

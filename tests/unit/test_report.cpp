@@ -1,0 +1,119 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+#include <sstream>
+
+#include "../report/fixture_map.h"
+#include "tagmap/errors.h"
+#include "tagmap/report/html_table.h"
+#include "tagmap/report/report_writer.h"
+#include "tagmap/report/top_view.h"
+
+namespace fs = std::filesystem;
+using namespace tagmap;
+
+namespace
+{
+struct Run
+{
+	mrpt::maps::CPointsMapXYZI map = tagmap::testing::makeReportFixtureMap();
+	PipelineParams params;
+	Detections found = Pipeline(params).detect(map, {}, true);
+};
+
+const Run& run()
+{
+	static const Run r;
+	return r;
+}
+
+std::string readText(const fs::path& p)
+{
+	std::ifstream in(p);
+	std::stringstream s;
+	s << in.rdbuf();
+	return s.str();
+}
+
+fs::path freshDir(const std::string& name)
+{
+	const fs::path d = fs::path(::testing::TempDir()) / name;
+	fs::remove_all(d);
+	return d;
+}
+
+size_t count(const std::string& text, const std::string& what)
+{
+	size_t n = 0;
+	for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) n++;
+	return n;
+}
+}  // namespace
+
+TEST(Report, WritesPageWithEveryImage)
+{
+	ASSERT_EQ(run().found.tags.size(), 2u);
+	const fs::path dir = freshDir("tagmap_report_page");
+	report::writeReport(dir.string(), {"walls.pcd", "synthetic", "tagmap detect walls.pcd", run().map, run().found,
+									   run().params});
+	const std::string html = readText(dir / "index.html");
+	EXPECT_NE(html.find("tag36h11"), std::string::npos);
+	EXPECT_NE(html.find("aruco_4x4_50"), std::string::npos);
+	EXPECT_NE(html.find("id=\"image-check\""), std::string::npos);
+
+	// Every <img> names a PNG that exists and decodes.
+	const std::regex img("<img [^>]*src=\"([^\"]+)\"");
+	size_t images = 0;
+	for (std::sregex_iterator it(html.begin(), html.end(), img), end; it != end; ++it, images++)
+		EXPECT_FALSE(cv::imread((dir / (*it)[1].str()).string()).empty()) << (*it)[1];
+	size_t withImage = 0;
+	for (const auto& c : run().found.candidates) withImage += !c.image.empty();
+	EXPECT_EQ(images, 1 + withImage);
+	EXPECT_GE(count(html, "decoded tag36h11:7"), 1u);
+
+	// Nothing left beside it.
+	for (const auto& e : fs::directory_iterator(dir.parent_path()))
+		EXPECT_EQ(e.path().filename().string().find("tagmap_report_page."), std::string::npos) << e.path();
+}
+
+TEST(Report, ReplacesItsOwnFolderButNoOtherOne)
+{
+	const fs::path dir = freshDir("tagmap_report_replace");
+	const report::ReportInput in{"walls.pcd", "", "", run().map, run().found, run().params};
+	report::writeReport(dir.string(), in);
+	std::ofstream(dir / "stale.png") << "x";
+	report::writeReport(dir.string(), in);  // a second run replaces the first one whole
+	EXPECT_FALSE(fs::exists(dir / "stale.png"));
+	EXPECT_TRUE(fs::exists(dir / "index.html"));
+
+	const fs::path precious = freshDir("tagmap_report_precious");
+	fs::create_directories(precious);
+	std::ofstream(precious / "thesis.tex") << "years of work";
+	EXPECT_THROW(report::writeReport(precious.string(), in), InputError);
+	EXPECT_EQ(readText(precious / "thesis.tex"), "years of work");
+
+	const fs::path file = fs::path(::testing::TempDir()) / "tagmap_report_file";
+	std::ofstream(file) << "x";
+	EXPECT_THROW(report::checkReportDir(file.string()), InputError);
+}
+
+TEST(Report, TopViewOutlinesTags)
+{
+	const report::TopView v = report::renderTopView(run().map, run().found.tags);
+	ASSERT_FALSE(v.image.empty());
+	EXPECT_LE(std::max(v.image.cols, v.image.rows), report::TopViewParams{}.maxPixels);
+	// The walls face -y: seen from the front, z up, x to the right.
+	EXPECT_GT(v.frame.v.z(), 0.99);
+	EXPECT_LT(v.frame.n.y(), -0.99);
+	cv::Mat m;
+	cv::inRange(v.image, cv::Scalar(250, 0, 250), cv::Scalar(255, 5, 255), m);
+	EXPECT_GT(cv::countNonZero(m), 100);
+}
+
+TEST(Report, HtmlEscape)
+{
+	EXPECT_EQ(report::htmlEscape("<a href=\"x\">&'"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;");
+}
