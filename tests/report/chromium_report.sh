@@ -21,13 +21,14 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$artifacts"
 
+# A simulator failure is the simulator tests' business; this test is about
+# the page, so it says so and carries on with the synthetic map.
 scene=$src/share/scenes/parking.yaml
-if [ -f "$scene" ]; then
-  "$tagmap" simulate "$scene" --out "$work/sim" >/dev/null
-  map=$work/sim/map.pcd
-else
-  "$fixture" "$work/map.pcd"
+map=$work/sim/map.pcd
+if [ ! -f "$scene" ] || ! "$tagmap" simulate "$scene" --out "$work/sim" >"$work/simulate.log" 2>&1; then
+  [ -f "$scene" ] && echo "warning: tagmap simulate $scene failed, using the synthetic map" >&2
   map=$work/map.pcd
+  "$fixture" "$map"
 fi
 
 "$tagmap" detect "$map" --json "$work/tags.json" --report "$work/report" --quiet
