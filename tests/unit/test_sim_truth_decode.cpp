@@ -132,21 +132,23 @@ void checkTag(const mrpt::maps::CPointsMapXYZI& map, const TagDetection& truth, 
 			  << worst * 1000 << " mm\n";
 }
 
-void checkFamily(const std::string& family, int id, double size, double rollDeg)
+void checkFamily(const std::string& family, int id, double size, double rollDeg, double tolerance = 0.004)
 {
 	const auto scene = sim::parseScene(sceneText(family, id, size, rollDeg), "truth_decode.yaml");
 	sim::SimOptions opt;
 	opt.seed = 11;
 	const auto out = sim::simulate(scene, opt);
 	ASSERT_EQ(out.truth.size(), 1u);
-	checkTag(out.map, out.truth[0], out.tagPoints[0], 0.004);
+	checkTag(out.map, out.truth[0], out.tagPoints[0], tolerance);
 }
 }  // namespace
 
 TEST(SimTruthDecode, Tag36h11) { checkFamily("tag36h11", 5, 0.20, 30); }
 TEST(SimTruthDecode, TagStandard41h12) { checkFamily("tagStandard41h12", 12, 0.16, -60); }
-TEST(SimTruthDecode, ArucoDict) { checkFamily("aruco_6x6_250", 4, 0.20, 100); }
-TEST(SimTruthDecode, ArucoOriginal) { checkFamily("aruco_original", 1, 0.20, 0); }
+// OpenCV's ArUco corners sit up to ~1 px (here ~4 mm) inside the true border
+// where libapriltag's are within ~0.3 px, hence the looser bound.
+TEST(SimTruthDecode, ArucoDict) { checkFamily("aruco_6x6_250", 4, 0.20, 100, 0.006); }
+TEST(SimTruthDecode, ArucoOriginal) { checkFamily("aruco_original", 1, 0.20, 0, 0.006); }
 
 // Every family, rolled, on the ceiling and on a tilted board (families.yaml).
 TEST(SimTruthDecode, FamiliesSceneEveryTag)
@@ -155,4 +157,17 @@ TEST(SimTruthDecode, FamiliesSceneEveryTag)
 	const auto out = sim::simulate(scene, {});
 	ASSERT_EQ(out.truth.size(), scene.tags.size());
 	for (size_t i = 0; i < out.truth.size(); i++) checkTag(out.map, out.truth[i], out.tagPoints[i], 0.005);
+}
+
+// The paper's parking lot: the slowly scanned tags 1 and 4 decode where the
+// drifted map shows them (truthInMap); tag 0 is the hard sparse/blurred case
+// and is only reported.
+TEST(SimTruthDecode, ParkingSlowPassTags)
+{
+	const auto scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/parking.yaml");
+	const auto out = sim::simulate(scene, {});
+	ASSERT_EQ(out.truthInMap.size(), 3u);
+	// 3 cm: the map is a blend of frames with different drift; truthInMap
+	// follows only the frame that saw the tag most.
+	for (size_t i = 1; i < 3; i++) checkTag(out.map, out.truthInMap[i], out.tagPoints[i], 0.03);
 }

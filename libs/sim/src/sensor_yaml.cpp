@@ -23,7 +23,9 @@ SensorSpec defaultsFor(SensorKind kind)
 	{
 		case SensorKind::Rosette:  // Livox MID-40: 2 cm range noise, 0.28 x 0.03 deg beam
 			s.rangeNoiseSigma = 0.02;
-			s.beam.divergenceMrad = 2.5;
+			// The footprint model is circular; the datasheet's 4.9 x 0.5 mrad
+			// ellipse becomes the circle of equal area.
+			s.beam.divergenceMrad = 1.6;
 			s.minRange = 1.0;
 			s.maxRange = 260;
 			break;

@@ -40,6 +40,20 @@ std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed)
 	for (size_t i = 0; i < out.truth.size(); i++)
 		j << (i ? ", " : "") << "{\"family\": " << jsonQuote(out.truth[i].family) << ", \"id\": " << out.truth[i].id
 		  << ", \"points\": " << out.tagPoints[i] << "}";
+	// Where the drifted map shows each tag (see SimulationOutput::truthInMap).
+	j << "], \"tags_in_map\": [";
+	char num[64];
+	for (size_t i = 0; i < out.truthInMap.size(); i++)
+	{
+		const TagDetection& t = out.truthInMap[i];
+		j << (i ? ", " : "") << "{\"family\": " << jsonQuote(t.family) << ", \"id\": " << t.id << ", \"corners\": [";
+		for (int v = 0; v < 4; v++)
+		{
+			std::snprintf(num, sizeof num, "[%.6f, %.6f, %.6f]", t.corners[v].x(), t.corners[v].y(), t.corners[v].z());
+			j << (v ? ", " : "") << num;
+		}
+		j << "]}";
+	}
 	j << "]";
 	return j.str();
 }

@@ -37,6 +37,36 @@ double densityForTarget(const Scene& scene, const World& world, size_t target, c
 	if (hitFraction <= 0) return 1;
 	return static_cast<double>(target) / hitFraction / static_cast<double>(rays);
 }
+// The frame contributing most points to each tag decides where the map shows it.
+std::vector<TagDetection> truthAsMapped(const SimulationOutput& out, size_t firstTagObject)
+{
+	std::vector<TagDetection> mapped = out.truth;
+	std::vector<size_t> best(out.truth.size(), 0), bestFrame(out.truth.size(), 0);
+	for (size_t k = 0; k < out.frames.size(); k++)
+	{
+		std::vector<size_t> count(out.truth.size(), 0);
+		const FrameData& fd = out.frames[k];
+		for (size_t i = fd.firstPoint; i < fd.firstPoint + fd.pointCount; i++)
+		{
+			const int32_t o = out.points[i].object;
+			if (o >= static_cast<int32_t>(firstTagObject)) count[o - firstTagObject]++;
+		}
+		for (size_t t = 0; t < count.size(); t++)
+			if (count[t] > best[t])
+			{
+				best[t] = count[t];
+				bestFrame[t] = k;
+			}
+	}
+	for (size_t t = 0; t < mapped.size(); t++)
+	{
+		if (out.frames.empty()) break;
+		const FrameData& fd = out.frames[bestFrame[t]];
+		mapped[t].pose = fd.driftedPose * fd.truePose.inverse() * out.truth[t].pose;
+		mapped[t].corners = cornersFromPose(mapped[t].pose, mapped[t].size);
+	}
+	return mapped;
+}
 }  // namespace
 
 SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options)
@@ -120,6 +150,7 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options)
 		}
 	}
 	out.map.mark_as_modified();
+	out.truthInMap = truthAsMapped(out, firstTagObject);
 	out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 	return out;
 }

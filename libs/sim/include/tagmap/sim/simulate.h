@@ -61,6 +61,10 @@ struct SimulationOutput
 	std::vector<std::string> objectNames;  // scene objects, then one paper per tag
 	std::vector<TagDetection> truth;  // printed faces in {G}, CONVENTIONS vertex order
 	std::vector<size_t> tagPoints;  // points whose echo came mostly from each tag's paper
+	/** Each tag where the drifted map shows it: the true pose moved by the
+	 *  drift of the frame that saw most of it (T_drifted_k * T_true_k^-1).
+	 *  Equals `truth` without drift; tells map error from detector error. */
+	std::vector<TagDetection> truthInMap;
 	std::vector<FrameData> frames;
 	std::vector<SimPoint> points;  // grouped by frame
 	/** All frames merged at their drifted poses, intensities x intensityScale. */
