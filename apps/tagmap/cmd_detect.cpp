@@ -5,6 +5,7 @@
 
 #include "cli.h"
 #include "commands.h"
+#include "detect_outputs.h"
 #include "pipeline_args.h"
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
@@ -33,7 +34,12 @@ std::string usage()
 		   "Options:\n"
 		   "  --json OUT         result file (CONVENTIONS.md schema), written atomically (required)\n"
 		   "  --report DIR       also write DIR/index.html: the map with the tags marked, every\n"
-		   "                     candidate's image and why it was rejected, timings (default: none)\n" +
+		   "                     candidate's image and why it was rejected, timings (default: none)\n"
+		   "  --landmarks F      mrpt::maps::CLandmarksMap, one beacon per tag (.gz MRPT serialization)\n"
+		   "  --tagmap F         tagmap::maps::CTagMap with the tags and the points (load the plugin)\n"
+		   "  --ini F            [MetricMap] section with the tags as beacons, for pf-localization\n"
+		   "  --rawlog F         RawLogViewer file: the map and the tags as a CObservation3DScene\n"
+		   "  --3dscene F        SceneViewer3D file: the map coloured by intensity, the tags drawn\n" +
 		   pipelineOptionsHelp() +
 		   "  --quiet            print nothing but errors (default: progress and a table of tags)\n"
 		   "  --verbose          also print per-stage timings and counts\n"
@@ -75,7 +81,8 @@ int runDetect(int argc, char** argv)
 {
 	return cli::runCommand("detect", [&] {
 		const cli::Args args =
-			cli::parse(argc, argv, 1, with(pipelineOptions(), {"--json", "--report"}), {"--quiet", "--verbose", "--help"});
+			cli::parse(argc, argv, 1, with(with(pipelineOptions(), mrptOutputOptions()), {"--json", "--report"}),
+					   {"--quiet", "--verbose", "--help"});
 		if (args.has("--help"))
 		{
 			std::cout << usage();
@@ -90,6 +97,7 @@ int runDetect(int argc, char** argv)
 		// Fail on an unwritable output now, not after minutes of work.
 		checkOutputWritable(jsonPath);
 		if (!reportDir.empty()) report::checkReportDir(reportDir);
+		checkMrptOutputs(args);
 
 		report::ProgressParams pp;
 		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
@@ -112,6 +120,7 @@ int runDetect(int argc, char** argv)
 		const Pipeline pipeline(params);
 		const Detections found = pipeline.detect(map, progress.callback(), !reportDir.empty());
 		writeTagsJson(jsonPath, found.tags);
+		writeMrptOutputs(args, map, found);
 		if (!reportDir.empty())
 		{
 			progress.update("report", 0, 0);

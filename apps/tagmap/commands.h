@@ -8,4 +8,5 @@ namespace tagmap::app
 int runSimulate(int argc, char** argv);
 int runDetect(int argc, char** argv);
 int runConfig(int argc, char** argv);
+int runCompare(int argc, char** argv);
 }  // namespace tagmap::app

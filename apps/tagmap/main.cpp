@@ -17,6 +17,7 @@ struct Command
 const Command kCommands[] = {
 	{"detect", tagmap::app::runDetect, "find fiducial tags in a point-cloud map and write their poses"},
 	{"simulate", tagmap::app::runSimulate, "simulate LiDAR maps of a YAML scene, with exact ground truth"},
+	{"compare", tagmap::app::runCompare, "score a result file against ground truth (found, missed, errors)"},
 	{"config", tagmap::app::runConfig, "print the effective detection parameters as YAML (--dump)"},
 };
 
