@@ -95,3 +95,12 @@ TEST(AtomicFile, FailedWriteLeavesOldFileUntouched)
 	for (const auto& e : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
 		EXPECT_EQ(e.path().filename().string().find("tagmap_test_atomic.txt.tmp"), std::string::npos);
 }
+
+TEST(TagFamily, NestedArucoDictionariesNameTheSameMarker)
+{
+	EXPECT_TRUE(sameMarker("aruco_4x4_50", 7, "aruco_4x4_1000", 7));
+	EXPECT_FALSE(sameMarker("aruco_4x4_50", 7, "aruco_5x5_50", 7));
+	EXPECT_FALSE(sameMarker("aruco_4x4_50", 7, "aruco_4x4_1000", 8));
+	EXPECT_FALSE(sameMarker("aruco_original", 7, "aruco_5x5_1000", 7));
+	EXPECT_FALSE(sameMarker("tag36h11", 7, "tag25h9", 7));
+}

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tagmap/tag_family.h"
+
 namespace tagmap
 {
 int Evaluation::found() const
@@ -22,7 +24,7 @@ Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std:
 		for (size_t k = 0; k < found.size() && !e.found; k++)
 		{
 			const auto& d = found[k];
-			if (used[k] || d.family != t.family || d.id != t.id) continue;
+			if (used[k] || !sameMarker(d.family, d.id, t.family, t.id)) continue;
 			if ((d.position() - t.position()).norm() > 0.5 * t.size) continue;
 			used[k] = true;
 			e.found = true;

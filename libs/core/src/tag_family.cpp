@@ -12,6 +12,7 @@
 
 #include <opencv2/aruco.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <memory>
 #include <sstream>
@@ -127,6 +128,17 @@ const TagFamilyInfo* findFamily(const std::string& name)
 	for (const auto& f : supportedFamilies())
 		if (f.name == name) return &f;
 	return nullptr;
+}
+
+bool sameMarker(const std::string& familyA, int idA, const std::string& familyB, int idB)
+{
+	if (idA != idB) return false;
+	if (familyA == familyB) return true;
+	const TagFamilyInfo *a = findFamily(familyA), *b = findFamily(familyB);
+	const auto nested = [](const TagFamilyInfo* f) {
+		return f && f->system == TagSystem::ArUco && f->name != "aruco_original";
+	};
+	return nested(a) && nested(b) && a->borderCells == b->borderCells && idA < std::min(a->idCount, b->idCount);
 }
 
 std::string supportedFamilyList()

@@ -30,8 +30,8 @@ struct Evaluation
 	int falsePositives() const { return static_cast<int>(falseDetections.size()); }
 };
 
-/** A detection matches a true tag of the same family and id whose centre
- *  is within half its size. */
+/** A detection matches a true tag of the same marker (sameMarker()) whose
+ *  centre is within half its size. */
 Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std::vector<TagDetection>& truth);
 
 }  // namespace tagmap

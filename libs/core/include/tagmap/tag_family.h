@@ -26,6 +26,12 @@ struct TagFamilyInfo
 	int borderCells = 0;
 };
 
+/** True when the two readings name the same printed marker: the same family
+ *  and id, or two ArUco dictionaries of one bit size (OpenCV's DICT_4X4_50
+ *  is the first 50 markers of DICT_4X4_1000, and so on) and the same id.
+ *  Without --family, the decoder names the smallest dictionary holding it. */
+bool sameMarker(const std::string& familyA, int idA, const std::string& familyB, int idB);
+
 /** Every family tagmap supports, AprilTag first. */
 const std::vector<TagFamilyInfo>& supportedFamilies();
 
