@@ -15,19 +15,23 @@ int runCompare(int argc, char** argv)
 {
 	try
 	{
-		const cli::Args args = cli::parse(argc, argv, 1, {}, {"--help"});
+		const cli::Args args = cli::parse(argc, argv, 1, {}, {"--help", "--in-map"});
 		if (args.has("--help"))
 		{
-			std::cout << "Usage: tagmap compare RESULT.json TRUTH.json\n\n"
+			std::cout << "Usage: tagmap compare RESULT.json TRUTH.json [--in-map]\n\n"
 						 "Matches tags by family, id and position (within half a tag size) and prints,\n"
 						 "per true tag, the position error per axis, the roll/pitch/yaw error, the\n"
 						 "largest corner error and whether the vertex order is right; then the\n"
 						 "numbers found, missed and falsely detected. Exit status 0 when every true\n"
-						 "tag was found with the right vertex order and nothing else was reported.\n";
+						 "tag was found with the right vertex order and nothing else was reported.\n"
+						 "\n"
+						 "  --in-map   compare with the truth's `tags_in_map` list (the simulator's tags\n"
+						 "             where the drifted map shows them), which separates the\n"
+						 "             detector's error from the map's own drift\n";
 			return 0;
 		}
 		if (args.positional.size() != 2) throw cli::UsageError("expected RESULT.json and TRUTH.json");
-		const Evaluation ev = evaluateDetections(readTagsJson(args.positional[0]), readTagsJson(args.positional[1]));
+		const Evaluation ev = evaluateDetections(readTagsJson(args.positional[0]), readTagsJson(args.positional[1], args.has("--in-map") ? "tags_in_map" : "tags"));
 		std::printf("%-16s %5s %6s %9s %9s %9s %8s %8s %8s %10s %6s\n", "family", "id", "found", "dx [m]", "dy [m]",
 					"dz [m]", "droll", "dpitch", "dyaw", "corner [m]", "order");
 		bool ok = true;

@@ -92,7 +92,7 @@ void writeTagsJson(const std::string& path, const std::vector<TagDetection>& tag
 	writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 
-std::vector<TagDetection> readTagsJson(const std::string& path)
+std::vector<TagDetection> readTagsJson(const std::string& path, const std::string& listKey)
 {
 	mrpt::containers::yaml doc;
 	try
@@ -101,35 +101,43 @@ std::vector<TagDetection> readTagsJson(const std::string& path)
 	}
 	catch (const std::exception& e)
 	{
-		throw InputError(path, "", std::string("not a readable JSON file: ") + e.what());
+		throw InputError(path, "", "not a readable JSON file: " + errorSummary(e.what()));
 	}
-	if (!doc.isMap() || !doc.has("tags") || !doc["tags"].isSequence())
-		throw InputError(path, "", "no \"tags\" list");
+	if (!doc.isMap() || !doc.has(listKey) || !doc[listKey].isSequence())
+		throw InputError(path, "", "no \"" + listKey + "\" list");
 	std::vector<TagDetection> out;
-	const auto& seq = doc["tags"].asSequence();
+	const auto& seq = doc[listKey].asSequence();
 	for (size_t i = 0; i < seq.size(); i++)
 	{
-		const std::string where = "tags[" + std::to_string(i) + "]";
+		const std::string where = listKey + "[" + std::to_string(i) + "]";
 		try
 		{
 			mrpt::containers::yaml t = seq[i];
 			TagDetection d;
 			d.family = t["family"].as<std::string>();
 			d.id = t["id"].as<int>();
-			d.size = t["size"].as<double>();
 			for (int k = 0; k < 4; k++)
 				for (int j = 0; j < 3; j++) d.corners[k][j] = t["corners"](k)(j).as<double>();
-			Eigen::Vector3d p;
-			for (int j = 0; j < 3; j++) p[j] = t["position"](j).as<double>();
-			Eigen::Quaterniond q(t["quaternion"](0).as<double>(), t["quaternion"](1).as<double>(),
-								 t["quaternion"](2).as<double>(), t["quaternion"](3).as<double>());
-			d.pose.linear() = q.normalized().toRotationMatrix();
-			d.pose.translation() = p;
+			// Corners are the one required geometry (surveyed truth often has
+			// only them); size and pose follow from them when absent.
+			d.pose = poseFromCorners(d.corners);
+			d.size = 0;
+			for (int k = 0; k < 4; k++) d.size += 0.25 * (d.corners[(k + 1) % 4] - d.corners[k]).norm();
+			if (t.has("size")) d.size = t["size"].as<double>();
+			if (t.has("position") && t.has("quaternion"))
+			{
+				Eigen::Vector3d p;
+				for (int j = 0; j < 3; j++) p[j] = t["position"](j).as<double>();
+				Eigen::Quaterniond q(t["quaternion"](0).as<double>(), t["quaternion"](1).as<double>(),
+									 t["quaternion"](2).as<double>(), t["quaternion"](3).as<double>());
+				d.pose.linear() = q.normalized().toRotationMatrix();
+				d.pose.translation() = p;
+			}
 			out.push_back(d);
 		}
 		catch (const std::exception& e)
 		{
-			throw InputError(path, where, std::string("malformed tag: ") + e.what());
+			throw InputError(path, where, "malformed tag: " + errorSummary(e.what()));
 		}
 	}
 	return out;

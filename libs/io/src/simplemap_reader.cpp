@@ -15,23 +15,6 @@ namespace tagmap::io::detail
 {
 namespace
 {
-/** MRPT exception texts carry a multi-line call trace; a user needs the
- *  first line that says what went wrong. */
-std::string firstLine(const std::string& text)
-{
-	std::string_view s(text);
-	while (!s.empty())
-	{
-		const size_t nl = s.find('\n');
-		std::string_view line = s.substr(0, nl);
-		while (!line.empty() && (line.front() == ' ' || line.front() == '\t' || line.front() == '=')) line.remove_prefix(1);
-		if (!line.empty()) return std::string(line.substr(0, 200));
-		if (nl == std::string_view::npos) break;
-		s.remove_prefix(nl + 1);
-	}
-	return "unknown error";
-}
-
 mrpt::maps::CSimpleMap readSimpleMap(const std::string& path)
 {
 	{
@@ -52,7 +35,7 @@ mrpt::maps::CSimpleMap readSimpleMap(const std::string& path)
 	}
 	catch (const std::exception& e)
 	{
-		throw InputError(path, "", "not a readable MRPT simplemap: " + firstLine(e.what()));
+		throw InputError(path, "", "not a readable MRPT simplemap: " + errorSummary(e.what()));
 	}
 	return sm;
 }
@@ -84,7 +67,7 @@ void readSimplemap(const std::string& path, mrpt::maps::CPointsMapXYZI& out, Loa
 			}
 			catch (const std::exception& e)
 			{
-				throw InputError(path, "keyframe " + std::to_string(keyframe), std::string(obs->GetRuntimeClass()->className) + ": " + firstLine(e.what()));
+				throw InputError(path, "keyframe " + std::to_string(keyframe), std::string(obs->GetRuntimeClass()->className) + ": " + errorSummary(e.what()));
 			}
 		}
 	}

@@ -17,4 +17,9 @@ class InputError : public std::runtime_error
 	explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
+/** One line out of a library's error text. MRPT exceptions carry a banner
+ *  and a multi-line call trace; a user needs the line that says what went
+ *  wrong (after "Message:"), else the first non-empty line, cut at 200 chars. */
+std::string errorSummary(const std::string& text);
+
 }  // namespace tagmap

@@ -17,8 +17,9 @@ std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string&
 /** Writes tagsToJson() atomically (temp file + rename). */
 void writeTagsJson(const std::string& path, const std::vector<TagDetection>& tags, const std::string& extraFields = {});
 
-/** Reads the `tags` list of a result or ground-truth file. Throws InputError. */
-std::vector<TagDetection> readTagsJson(const std::string& path);
+/** Reads the `tags` list (or another list of the same schema, such as the
+ *  simulator's `tags_in_map`) of a result or ground-truth file. Throws InputError. */
+std::vector<TagDetection> readTagsJson(const std::string& path, const std::string& listKey = "tags");
 
 /** JSON string literal with escapes, including the quotes. */
 std::string jsonQuote(const std::string& s);
