@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev googletest
   xvfb xauth imagemagick
   chromium                 # tests/report: the HTML report opened in a headless browser
+  clang libclang-rt-14-dev
 )
 
 missing=()

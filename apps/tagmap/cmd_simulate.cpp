@@ -1,8 +1,10 @@
 // `tagmap simulate SCENE.yaml --out DIR [...]`: a thin shell over tagmap_sim.
+#include <filesystem>
 #include <iostream>
 
 #include "cli.h"
 #include "commands.h"
+#include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/sim_outputs.h"
@@ -57,6 +59,8 @@ int runSimulate(int argc, char** argv)
 
 		const sim::Scene scene =
 			sim::loadScene(a.positional[0], a.has("--param") ? parseParam(a.get("--param")) : sim::SceneParameters{});
+		// Fail on an unwritable output now, not after the simulation.
+		checkOutputWritable((std::filesystem::path(a.get("--out")) / "map.pcd").string());
 		const sim::SimulationOutput out = sim::simulate(scene, opt);
 		sim::writeSimulationOutputs(a.get("--out"), out, {a.has("--simplemap"), opt.seed});
 
@@ -70,7 +74,7 @@ int runSimulate(int argc, char** argv)
 	}
 	catch (const cli::UsageError& e)
 	{
-		std::cerr << "tagmap simulate: " << e.what() << "\n" << kUsage;
+		std::cerr << "tagmap simulate: " << e.what() << " (see tagmap simulate --help)\n";
 		return 2;
 	}
 	catch (const InputError& e)

@@ -7,6 +7,7 @@
 
 #include "tagmap/errors.h"
 #include "tagmap/tag_family.h"
+#include "tagmap/yaml_text.h"
 
 namespace tagmap
 {
@@ -122,17 +123,8 @@ PipelineParams PipelineParams::fromYaml(const mrpt::containers::yaml& y)
 
 PipelineParams PipelineParams::fromYamlFile(const std::string& path)
 {
-	mrpt::containers::yaml y;
-	try
-	{
-		y = mrpt::containers::yaml::FromFile(path);
-	}
-	catch (const std::exception& e)
-	{
-		std::string msg = e.what();
-		if (auto nl = msg.find('\n'); nl != std::string::npos) msg = msg.substr(0, nl);
-		throw InputError(path, "", "cannot read configuration: " + msg);
-	}
+	// Not yaml::FromFile: it prints syntax errors over several stderr lines.
+	const mrpt::containers::yaml y = readYamlFile(path);
 	try
 	{
 		return fromYaml(y);

@@ -96,7 +96,7 @@ PlyHeader parseHeader(const std::string& path, const FileBytes& bytes)
 		}
 		else if (tok[0] == "element")
 		{
-			uint64_t n;
+			uint64_t n = 0;  // fail() throws, but clang cannot see that through the lambda
 			if (tok.size() != 3 || !parseCount(tok[2], n)) fail("expected 'element <name> <count>'");
 			h.elements.push_back(PlyElement{std::string(tok[1]), n, lines.lineNumber(), {}});
 		}

@@ -56,6 +56,12 @@ void MapFiller::expect(size_t n)
 	map_.resize(capacity_);
 }
 
+void MapFiller::skip(float x, float y, float z, float intensity)
+{
+	if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(intensity)) ++outOfRange_;
+	else ++nonFinite_;
+}
+
 void MapFiller::grow() { expect(std::max<size_t>(4096, (next_ - start_) / 2)); }
 
 void MapFiller::finish()
@@ -66,8 +72,9 @@ void MapFiller::finish()
 	report_.pointsRead += read_;
 	report_.pointsKept += next_ - start_;
 	report_.nonFiniteSkipped += nonFinite_;
+	report_.outOfRangeSkipped += outOfRange_;
 	start_ = capacity_ = next_;
-	read_ = nonFinite_ = 0;
+	read_ = nonFinite_ = outOfRange_ = 0;
 }
 
 size_t scalarSize(Scalar t)

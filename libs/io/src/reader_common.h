@@ -42,8 +42,9 @@ class FileBytes
 };
 
 /** Fills the map from its current end, skipping and counting non-finite
- *  points. The map is grown in large steps and trimmed in finish(), so the
- *  per-point path is a bounds check and four stores. */
+ *  and out-of-range (|coordinate| > kMaxAbsCoordinate) points. The map is
+ *  grown in large steps and trimmed in finish(), so the per-point path is a
+ *  bounds check and four stores. */
 class MapFiller
 {
    public:
@@ -55,9 +56,12 @@ class MapFiller
 	void add(float x, float y, float z, float intensity)
 	{
 		++read_;
-		if (!(std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(intensity)))
+		// One comparison chain rejects NaN too; the rare rejects are sorted
+		// into non-finite and too-far off the fast path.
+		if (!(std::fabs(x) <= kMaxAbsCoordinate && std::fabs(y) <= kMaxAbsCoordinate &&
+			  std::fabs(z) <= kMaxAbsCoordinate && std::isfinite(intensity)))
 		{
-			++nonFinite_;
+			skip(x, y, z, intensity);
 			return;
 		}
 		if (next_ == capacity_) grow();
@@ -71,11 +75,12 @@ class MapFiller
 
    private:
 	void grow();
+	void skip(float x, float y, float z, float intensity);
 
 	mrpt::maps::CPointsMapXYZI& map_;
 	LoadReport& report_;
 	size_t start_, next_, capacity_;
-	size_t read_ = 0, nonFinite_ = 0;
+	size_t read_ = 0, nonFinite_ = 0, outOfRange_ = 0;
 };
 
 enum class Scalar : uint8_t

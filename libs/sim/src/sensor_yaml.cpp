@@ -139,6 +139,9 @@ SensorSpec parseSensor(const YamlReader& r)
 			{
 				const auto st = r.numbers("step_deg", 2);
 				if (st[0] <= 0 || st[1] <= 0) r.child("step_deg").fail("steps must be > 0");
+				// Counted in double: an absurd step must not overflow the size_t count.
+				const double rays = ((g.azMaxDeg - g.azMinDeg) / st[0] + 1) * ((g.elMaxDeg - g.elMinDeg) / st[1] + 1);
+				if (rays > 2e9) r.child("step_deg").fail("steps this small give " + std::to_string(rays) + " rays per scan (more than 2e9)");
 				g.azStepDeg = st[0];
 				g.elStepDeg = st[1];
 			}

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "ray_engine.h"
+#include "tagmap/errors.h"
 #include "tagmap/sim/drift.h"
 #include "tagmap/sim/point_budget.h"
 #include "tagmap/sim/tag_paper.h"
@@ -20,13 +21,28 @@ size_t totalRays(const std::vector<Frame>& frames)
 	return n;
 }
 
+// Billions of rays (a tiny step_deg, a huge --points) would only end in
+// bad_alloc or run for days: refuse them up front, naming the scene.
+void checkRayBudget(const Scene& scene, const std::vector<Frame>& frames)
+{
+	constexpr double kMaxRays = 2e9;
+	double rays = 0;  // in double: a pattern's count may be absurd, the sum must not wrap
+	for (const auto& f : frames) rays += static_cast<double>(f.rays);
+	if (rays > kMaxRays)
+		throw InputError(scene.file.empty() ? scene.name : scene.file, "sensors",
+						 "the scene needs " + std::to_string(rays) +
+							 " rays, more than 2e9: use coarser steps, shorter runs or a smaller --points");
+}
+
 // Rays of a cheap pilot run used to measure the fraction of rays that return.
 constexpr double kPilotRays = 300000;
 
 /** Factor that makes `scene` produce about `target` points. */
 double densityForTarget(const Scene& scene, const World& world, size_t target, const SimOptions& options)
 {
-	const size_t rays = totalRays(scheduleFrames(scene));
+	const auto full = scheduleFrames(scene);
+	checkRayBudget(scene, full);
+	const size_t rays = totalRays(full);
 	if (rays == 0) return 1;
 	Scene pilot = scene;
 	const double pilotFactor = std::min(1.0, kPilotRays / static_cast<double>(rays));
@@ -99,6 +115,7 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options)
 	for (const auto& s : scene.sensors) out.sensorNames.push_back(s.name);
 
 	const std::vector<Frame> frames = scheduleFrames(scene);
+	checkRayBudget(scene, frames);
 	EngineResult cast = castFrames(scene, world, frames, options);
 	out.raysCast = cast.rays;
 	out.points = std::move(cast.points);

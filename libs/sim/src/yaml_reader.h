@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "tagmap/yaml_text.h"
+
 namespace tagmap::sim
 {
-/** Parses YAML text; syntax errors -> InputError "<file>: not valid YAML:
- *  line L, column C: <reason>". */
-mrpt::containers::yaml parseYamlText(const std::string& text, const std::string& file);
+using tagmap::parseYamlText;
 
 class YamlReader
 {

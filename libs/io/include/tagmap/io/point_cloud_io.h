@@ -15,6 +15,12 @@
 
 namespace tagmap::io
 {
+/** Points with a coordinate farther than this from the origin (metres) are
+ *  skipped and counted like NaN ones: no LiDAR map spans 1000 km, such values
+ *  are corrupt or sentinel data, and they would blow up the pipeline's voxel
+ *  grid, which covers the map's bounding box. */
+constexpr float kMaxAbsCoordinate = 1e6f;
+
 struct LoadReport
 {
 	std::string format;  // "pcd-binary", "ply-ascii", "kitti", "simplemap", ...
@@ -22,6 +28,7 @@ struct LoadReport
 	size_t pointsRead = 0;  // points in the file
 	size_t pointsKept = 0;  // finite points put into the map
 	size_t nonFiniteSkipped = 0;  // NaN/Inf coordinates or intensity
+	size_t outOfRangeSkipped = 0;  // a coordinate beyond kMaxAbsCoordinate
 	// .simplemap (and later rawlogs): observations merged into the map, and
 	// observations passed over because they carry no usable intensity.
 	size_t observationsUsed = 0;

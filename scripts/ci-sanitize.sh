@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Builds the unit tests, the tagmap binary and the fuzz-regression replays
+# with AddressSanitizer + UndefinedBehaviorSanitizer (-DTAGMAP_SANITIZE=ON) in
+# build-asan/ and runs them there, bad-input shell tests included. Left out:
+# the MRPT GUI/app tests and the Chromium report test (external programs, not
+# our code, and far too slow under ASan), and the long-running reliability
+# tests (determinism, kill mid-run), which the regular build covers.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=build-asan
+TARGETS=(
+	test_core test_io test_sim_patterns test_sim_physics test_sim_drift test_sim_scene
+	test_tag_decoder test_pipeline tagmap
+	fuzz_pcd_replay fuzz_ply_replay fuzz_lzf_replay fuzz_scene_replay fuzz_config_replay
+)
+EXCLUDE='_NOT_BUILT|^mrpt_|report_chromium|reliability_(determinism|kill_midrun)'
+
+cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTAGMAP_SANITIZE=ON >/dev/null
+cmake --build "$B" -j"$(nproc)" --target "${TARGETS[@]}"
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:check_initialization_order=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# ASan reserves terabytes of address space: no cap on the CLI runs here.
+export TAGMAP_RELIABILITY_VMEM_KB=unlimited
+ctest --test-dir "$B" --output-on-failure -j"$(nproc)" -E "$EXCLUDE"
