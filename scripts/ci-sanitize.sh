@@ -20,6 +20,7 @@ cmake --build "$B" -j"$(nproc)" --target "${TARGETS[@]}"
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:check_initialization_order=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0}
 # ASan reserves terabytes of address space: no cap on the CLI runs here.
 export TAGMAP_RELIABILITY_VMEM_KB=unlimited
 ctest --test-dir "$B" --output-on-failure -j"$(nproc)" -E "$EXCLUDE"

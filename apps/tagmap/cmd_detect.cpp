@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 
 #include "cli.h"
 #include "commands.h"
@@ -118,7 +119,18 @@ int runDetect(int argc, char** argv)
 			std::fprintf(stderr, "\n");
 		}
 		const Pipeline pipeline(params);
-		const Detections found = pipeline.detect(map, progress.callback(), !reportDir.empty());
+		const Detections found = [&] {
+			// The pipeline refuses maps it cannot index (a stray point 900 km
+			// from the rest): the input's fault, so the message names it.
+			try
+			{
+				return pipeline.detect(map, progress.callback(), !reportDir.empty());
+			}
+			catch (const std::invalid_argument& e)
+			{
+				throw InputError(input, "", e.what());
+			}
+		}();
 		writeTagsJson(jsonPath, found.tags);
 		writeMrptOutputs(args, map, found);
 		if (!reportDir.empty())

@@ -129,6 +129,15 @@ CASE=absurd-coordinates-binary
 { pcd_header "x y z intensity" "8 8 8 4" "F F F F" 3 3 binary; perl -e 'print pack("d< d< d< f<", 1e300, 0, 0, 1), pack("d< d< d< f<", 0, 0, 1, 1), pack("d< d< d< f<", 0, 1e7, 0, 1)'; } >"$M/far64.pcd"
 expect_detect_accepts "$M/far64.pcd" '"tags": \[\]'
 
+# Within the bound but 900 km from the rest: no voxel grid spans that, and
+# the refusal must name the file like any other bad input.
+CASE=stray-far-point
+{
+	pcd_header "x y z intensity" "4 4 4 4" "F F F F" 10001 10001 ascii
+	perl -e 'for my $i (0 .. 99) { for my $j (0 .. 99) { printf "%.2f %.2f 1 %d\n", $i / 100, $j / 100, ($i + $j) % 2 * 50 } } print "900000 0 1 5\n"'
+} >"$M/stray.pcd"
+expect_detect_rejects "$M/stray.pcd" "stray\.pcd: map extent 900000"
+
 CASE=empty-map
 pcd_header "x y z intensity" "4 4 4 4" "F F F F" 0 0 binary >"$M/none.pcd"
 expect_detect_accepts "$M/none.pcd" '"tags": \[\]'

@@ -36,6 +36,17 @@ expect_detect_rejects_output "/proc/self/tags.json" "/proc/self/tags\.json: "
 CASE=detect-output-empty
 expect_detect_rejects_output "" "output path is empty"
 
+# Every output of detect is checked up front, not only --json: a bad
+# --landmarks/--ini/... path fails before the map is read or --json written.
+for opt in --landmarks --tagmap --ini --rawlog --3dscene --report; do
+	CASE=detect$opt-under-a-file
+	CASES=$((CASES + 1))
+	rm -f "$WORK/first.json"
+	run_tagmap detect "$MAP" --quiet --json "$WORK/first.json" "$opt" "$WORK/a_file/out"
+	check_one_line_error "a_file/out"
+	[ ! -e "$WORK/first.json" ] || fail "--json was written although $opt cannot be"
+done
+
 CASE=simulate-output-under-a-file
 CASES=$((CASES + 1))
 start=$(date +%s)
