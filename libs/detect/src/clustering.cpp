@@ -72,16 +72,25 @@ std::vector<Cluster> clusterPoints(const float* xs, const float* ys, const float
 	// Voxels of edge `tolerance`, joined with their 26 neighbours: every pair
 	// of points closer than the tolerance ends up in one component.
 	VoxelGrid grid(kx.data(), ky.data(), kz.data(), kx.size(), tolerance);
+	kx = {};
+	ky = {};
+	kz = {};
 	DisjointSets sets(grid.voxelCount());
+	std::vector<uint32_t> voxelOf(pointIndices.size());
+	VoxelGrid::NeighbourSweep sweep(grid, 0);
+	uint32_t block[27];
 	for (size_t v = 0; v < grid.voxelCount(); v++)
-		grid.forEachNeighbourVoxel(grid.keyOfVoxel(v), 1, [&](size_t u) {
-			if (u > v) sets.unite(static_cast<uint32_t>(v), static_cast<uint32_t>(u));
-		});
+	{
+		const int count = sweep.neighbours(v, block);
+		for (int b = 0; b < count; b++)
+			if (block[b] > v) sets.unite(static_cast<uint32_t>(v), block[b]);
+		for (const uint32_t* p = grid.begin(v); p != grid.end(v); ++p) voxelOf[*p] = static_cast<uint32_t>(v);
+	}
 	std::vector<int64_t> clusterOfRoot(grid.voxelCount(), -1);
 	std::vector<std::vector<uint32_t>> members;
 	for (size_t k = 0; k < pointIndices.size(); k++)  // ascending map index: deterministic order
 	{
-		const uint32_t root = sets.find(grid.voxelOfPoint(k));
+		const uint32_t root = sets.find(voxelOf[k]);
 		if (clusterOfRoot[root] < 0)
 		{
 			clusterOfRoot[root] = static_cast<int64_t>(members.size());

@@ -1,90 +1,147 @@
 #include "tagmap/voxel_grid.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "tagmap/parallel.h"
 
 namespace tagmap
 {
 namespace
 {
-constexpr int kBits = 21;  // per axis: 2M cells, 63 bits in all
-constexpr int32_t kMaxCells = 1 << 20;  // leaves room for neighbour offsets
-constexpr uint64_t kEmpty = std::numeric_limits<uint64_t>::max();
+constexpr int32_t kMaxCells = 1 << 20;  // per axis
 
-uint64_t mix(uint64_t h)
+int bitsFor(uint64_t maxValue)
 {
-	h ^= h >> 33;
-	h *= 0xff51afd7ed558ccdULL;
-	h ^= h >> 33;
-	return h;
+	int b = 1;
+	while (b < 64 && (maxValue >> b) != 0) b++;
+	return b;
+}
+
+// Stable LSD radix sort of `a` by bits [lowBit, highBit), in passes of at
+// most 11 bits. Each pass: per-chunk histograms, prefix sums in (digit,
+// chunk) order, per-chunk scatter; the result is the same for any `threads`.
+void radixSort(std::vector<uint64_t>& a, int lowBit, int highBit, unsigned threads)
+{
+	const size_t n = a.size();
+	std::vector<uint64_t> tmp(n);
+	const int passes = (highBit - lowBit + 10) / 11;
+	const int width = passes ? (highBit - lowBit + passes - 1) / passes : 0;
+	threads = n < 65536 ? 1u : std::max(1u, threads);
+	for (int shift = lowBit; shift < highBit; shift += width)
+	{
+		const int bits = std::min(width, highBit - shift);
+		const size_t buckets = size_t{1} << bits;
+		const uint64_t mask = buckets - 1;
+		std::vector<size_t> hist(threads * buckets, 0);
+		parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
+			size_t* h = hist.data() + c * buckets;
+			for (size_t i = b; i < e; i++) h[(a[i] >> shift) & mask]++;
+		});
+		size_t pos = 0;
+		for (size_t d = 0; d < buckets; d++)
+			for (unsigned c = 0; c < threads; c++)
+			{
+				const size_t count = hist[c * buckets + d];
+				hist[c * buckets + d] = pos;
+				pos += count;
+			}
+		parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
+			size_t* h = hist.data() + c * buckets;
+			for (size_t i = b; i < e; i++) tmp[h[(a[i] >> shift) & mask]++] = a[i];
+		});
+		a.swap(tmp);
+	}
 }
 }  // namespace
 
-uint64_t VoxelGrid::pack(const VoxelKey& k)
-{
-	const uint64_t m = (1ULL << kBits) - 1;
-	return (static_cast<uint64_t>(k.x) & m) | ((static_cast<uint64_t>(k.y) & m) << kBits) |
-		   ((static_cast<uint64_t>(k.z) & m) << (2 * kBits));
-}
-
-VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize)
+VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize, unsigned threads)
 	: cellSize_(cellSize)
 {
 	if (!(cellSize > 0)) throw std::invalid_argument("voxel size must be positive");
 	if (n >= std::numeric_limits<uint32_t>::max()) throw std::invalid_argument("too many points (max 4e9)");
-	Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-	Eigen::Vector3d hi = -lo;
-	for (size_t i = 0; i < n; i++)
+	threads = n < 65536 ? 1u : resolveThreads(threads);
+
+	// Bounds, per chunk then combined (min/max do not depend on the order).
+	std::vector<Eigen::Array3f> los(threads, Eigen::Array3f::Constant(std::numeric_limits<float>::max()));
+	std::vector<Eigen::Array3f> his(threads, Eigen::Array3f::Constant(-std::numeric_limits<float>::max()));
+	parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
+		Eigen::Array3f lo = los[c], hi = his[c];
+		for (size_t i = b; i < e; i++)
+		{
+			const Eigen::Array3f q(xs[i], ys[i], zs[i]);
+			lo = lo.min(q);
+			hi = hi.max(q);
+		}
+		los[c] = lo;
+		his[c] = hi;
+	});
+	Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+	if (n > 0)
 	{
-		lo = lo.cwiseMin(Eigen::Vector3d(xs[i], ys[i], zs[i]));
-		hi = hi.cwiseMax(Eigen::Vector3d(xs[i], ys[i], zs[i]));
+		Eigen::Array3f l = los[0], h = his[0];
+		for (unsigned c = 1; c < threads; c++) l = l.min(los[c]), h = h.max(his[c]);
+		lo = l.cast<double>().matrix();
+		hi = h.cast<double>().matrix();
 	}
-	if (n == 0) lo = hi = Eigen::Vector3d::Zero();
-	// One cell of slack so neighbour offsets never go negative.
+	// Two cells of slack on either side: neighbour keys (x +- 1) stay inside
+	// the box, so linear keys of neighbours never wrap into another row.
 	origin_ = lo - Eigen::Vector3d::Constant(2 * cellSize);
 	const Eigen::Vector3d cells = (hi - origin_) / cellSize;
 	if (cells.maxCoeff() > kMaxCells - 4)
 		throw std::invalid_argument("map extent " + std::to_string((hi - lo).maxCoeff()) + " m is too large for a " +
 									std::to_string(cellSize) + " m voxel (more than 2^20 voxels across)");
+	for (int a = 0; a < 3; a++) dims_[a] = static_cast<uint64_t>(std::floor(cells[a])) + 3;
 
-	// Sort points by packed key. Keys are 63-bit: a 3-pass LSD radix sort on
-	// 21-bit digits would be the next speed-up; std::sort keeps it simple.
-	std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
-	for (size_t i = 0; i < n; i++)
-		keyed[i] = {pack(keyOf(Eigen::Vector3f(xs[i], ys[i], zs[i]))), static_cast<uint32_t>(i)};
-	std::sort(keyed.begin(), keyed.end());
-
+	const int keyBits = bitsFor(dims_[0] * dims_[1] * dims_[2] - 1);
+	const int idxBits = bitsFor(n > 0 ? n - 1 : 0);
+	auto keyOfPoint = [&](size_t i) { return linear(keyOf(Eigen::Vector3f(xs[i], ys[i], zs[i]))); };
 	order_.resize(n);
-	voxelOfPoint_.resize(n);
-	voxelStart_.clear();
-	for (size_t i = 0; i < n; i++)
+	if (keyBits + idxBits <= 64)
 	{
-		if (i == 0 || keyed[i].first != keyed[i - 1].first)
+		// key << idxBits | index in one word: sorting by the key bits keeps
+		// equal keys in index order (the sort is stable), as a sort of
+		// (key, index) pairs would.
+		std::vector<uint64_t> a(n);
+		parallelForBlocks(n, threads, [&](size_t b, size_t e) {
+			for (size_t i = b; i < e; i++) a[i] = (keyOfPoint(i) << idxBits) | i;
+		}, 1 << 16);
+		radixSort(a, idxBits, idxBits + keyBits, threads);
+		const uint64_t idxMask = idxBits == 64 ? ~uint64_t{0} : (uint64_t{1} << idxBits) - 1;
+		parallelForBlocks(n, threads, [&](size_t b, size_t e) {
+			for (size_t i = b; i < e; i++) order_[i] = static_cast<uint32_t>(a[i] & idxMask);
+		}, 1 << 16);
+		for (size_t i = 0; i < n; i++)
 		{
-			voxelStart_.push_back(static_cast<uint32_t>(i));
-			const uint32_t j = keyed[i].second;
-			voxelKeys_.push_back(keyOf(Eigen::Vector3f(xs[j], ys[j], zs[j])));
+			const uint64_t key = a[i] >> idxBits;
+			if (i == 0 || key != keys_.back())
+			{
+				voxelStart_.push_back(static_cast<uint32_t>(i));
+				keys_.push_back(key);
+			}
 		}
-		order_[i] = keyed[i].second;
-		voxelOfPoint_[keyed[i].second] = static_cast<uint32_t>(voxelStart_.size() - 1);
+	}
+	else
+	{
+		std::vector<std::pair<uint64_t, uint32_t>> keyed(n);
+		for (size_t i = 0; i < n; i++) keyed[i] = {keyOfPoint(i), static_cast<uint32_t>(i)};
+		std::sort(keyed.begin(), keyed.end());
+		for (size_t i = 0; i < n; i++)
+		{
+			if (i == 0 || keyed[i].first != keys_.back())
+			{
+				voxelStart_.push_back(static_cast<uint32_t>(i));
+				keys_.push_back(keyed[i].first);
+			}
+			order_[i] = keyed[i].second;
+		}
 	}
 	voxelStart_.push_back(static_cast<uint32_t>(n));
-
-	size_t cap = 16;
-	while (cap < 2 * voxelKeys_.size()) cap <<= 1;
-	hashMask_ = cap - 1;
-	hashKeys_.assign(cap, kEmpty);
-	hashValues_.assign(cap, 0);
-	for (size_t v = 0; v < voxelKeys_.size(); v++)
-	{
-		const uint64_t key = pack(voxelKeys_[v]);
-		uint64_t slot = mix(key) & hashMask_;
-		while (hashKeys_[slot] != kEmpty) slot = (slot + 1) & hashMask_;
-		hashKeys_[slot] = key;
-		hashValues_[slot] = static_cast<uint32_t>(v);
-	}
+	keys_.shrink_to_fit();
+	voxelStart_.shrink_to_fit();
 }
 
 VoxelKey VoxelGrid::keyOf(const Eigen::Vector3f& p) const
@@ -94,6 +151,13 @@ VoxelKey VoxelGrid::keyOf(const Eigen::Vector3f& p) const
 			static_cast<int32_t>(std::floor((p.z() - origin_.z()) / cellSize_))};
 }
 
+VoxelKey VoxelGrid::keyOfVoxel(size_t voxel) const
+{
+	const uint64_t k = keys_[voxel], row = k / dims_[0];
+	return {static_cast<int32_t>(k - row * dims_[0]), static_cast<int32_t>(row % dims_[1]),
+			static_cast<int32_t>(row / dims_[1])};
+}
+
 Eigen::Vector3d VoxelGrid::voxelCenter(const VoxelKey& k) const
 {
 	return origin_ + cellSize_ * Eigen::Vector3d(k.x + 0.5, k.y + 0.5, k.z + 0.5);
@@ -101,16 +165,42 @@ Eigen::Vector3d VoxelGrid::voxelCenter(const VoxelKey& k) const
 
 int64_t VoxelGrid::find(const VoxelKey& k) const
 {
-	if (k.x < 0 || k.y < 0 || k.z < 0 || k.x >= kMaxCells || k.y >= kMaxCells || k.z >= kMaxCells) return -1;
-	const uint64_t key = pack(k);
-	uint64_t slot = mix(key) & hashMask_;
-	while (true)
+	if (k.x < 0 || k.y < 0 || k.z < 0 || static_cast<uint64_t>(k.x) >= dims_[0] ||
+		static_cast<uint64_t>(k.y) >= dims_[1] || static_cast<uint64_t>(k.z) >= dims_[2])
+		return -1;
+	const uint64_t key = linear(k);
+	const auto it = std::lower_bound(keys_.begin(), keys_.end(), key);
+	return it != keys_.end() && *it == key ? it - keys_.begin() : -1;
+}
+
+VoxelGrid::NeighbourSweep::NeighbourSweep(const VoxelGrid& g, size_t firstVoxel) : g_(g)
+{
+	const uint64_t k = firstVoxel < g.keys_.size() ? g.keys_[firstVoxel] : 0;
+	for (int j = 0; j < 9; j++)
 	{
-		const uint64_t s = hashKeys_[slot];
-		if (s == key) return hashValues_[slot];
-		if (s == kEmpty) return -1;
-		slot = (slot + 1) & hashMask_;
+		const int64_t dy = j % 3 - 1, dz = j / 3 - 1;
+		const uint64_t lo = k + static_cast<uint64_t>(dy * static_cast<int64_t>(g.dims_[0]) +
+													  dz * static_cast<int64_t>(g.dims_[0] * g.dims_[1])) - 1;
+		cursor_[j] = static_cast<size_t>(std::lower_bound(g.keys_.begin(), g.keys_.end(), lo) - g.keys_.begin());
 	}
+}
+
+int VoxelGrid::NeighbourSweep::neighbours(size_t v, uint32_t (&out)[27])
+{
+	const std::vector<uint64_t>& keys = g_.keys_;
+	const size_t count = keys.size();
+	const int64_t d0 = static_cast<int64_t>(g_.dims_[0]), d01 = static_cast<int64_t>(g_.dims_[0] * g_.dims_[1]);
+	const uint64_t k = keys[v];
+	int found = 0;
+	for (int j = 0; j < 9; j++)
+	{
+		const uint64_t lo = k + static_cast<uint64_t>((j % 3 - 1) * d0 + (j / 3 - 1) * d01) - 1, hi = lo + 2;
+		size_t c = cursor_[j];
+		while (c < count && keys[c] < lo) c++;
+		cursor_[j] = c;
+		for (; c < count && keys[c] <= hi; c++) out[found++] = static_cast<uint32_t>(c);
+	}
+	return found;
 }
 
 }  // namespace tagmap

@@ -47,6 +47,28 @@ void parallelForWorkers(size_t n, unsigned threads, F&& f, size_t blockSize = 1)
 	for (auto& t : pool) t.join();
 }
 
+/** Cuts [0, n) into `chunks` contiguous, nearly equal ranges and calls
+ *  f(chunk, begin, end) for each, one thread per chunk. For passes whose
+ *  per-chunk partial results are combined in chunk order (histograms,
+ *  prefix sums, bounds), so the combination does not depend on timing. */
+template <typename F>
+void parallelForChunks(size_t n, unsigned chunks, F&& f)
+{
+	chunks = std::max(1u, chunks);
+	auto range = [&](unsigned c) { return std::make_pair(n * c / chunks, n * (c + 1) / chunks); };
+	if (chunks == 1)
+	{
+		f(0u, size_t{0}, n);
+		return;
+	}
+	std::vector<std::thread> pool;
+	for (unsigned c = 1; c < chunks; c++)
+		pool.emplace_back([&f, c, r = range(c)] { f(c, r.first, r.second); });
+	const auto r0 = range(0);
+	f(0u, r0.first, r0.second);
+	for (auto& t : pool) t.join();
+}
+
 /** Number of threads to use: `requested`, or the hardware's when 0. */
 inline unsigned resolveThreads(unsigned requested)
 {

@@ -1,9 +1,13 @@
-// The neighbour index every stage shares: points bucketed into cubic voxels
-// (a sorted index plus a hash from voxel key to its range), so "points near
-// p" is a handful of contiguous ranges. Built once per pipeline run.
+// The neighbour index every stage shares: points bucketed into cubic voxels.
+// Voxels are numbered in ascending key order (z, then y, then x), each owns
+// a contiguous range of a sorted point index, so "points near p" is a
+// handful of contiguous ranges. Built once per pipeline run with a parallel
+// LSD radix sort; no hash: a voxel's 26 neighbours come from a forward sweep
+// over the sorted keys (NeighbourSweep), a single key from a binary search.
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -18,29 +22,32 @@ struct VoxelKey
 class VoxelGrid
 {
    public:
-	/** Buckets points (xs/ys/zs of length n) into voxels of edge `cellSize`.
+	/** Buckets points (xs/ys/zs of length n) into voxels of edge `cellSize`,
+	 *  with `threads` threads (0: all cores; the result does not depend on it).
 	 *  Throws std::invalid_argument if the extent does not fit 2^20 cells. */
-	VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize);
+	VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize, unsigned threads = 0);
 
 	double cellSize() const { return cellSize_; }
-	size_t voxelCount() const { return voxelStart_.size() - 1; }
+	size_t voxelCount() const { return keys_.size(); }
+	size_t pointCount() const { return order_.size(); }
 
 	VoxelKey keyOf(const Eigen::Vector3f& p) const;
-	VoxelKey keyOfVoxel(size_t voxel) const { return voxelKeys_[voxel]; }
+	VoxelKey keyOfVoxel(size_t voxel) const;
 	Eigen::Vector3d voxelCenter(const VoxelKey& k) const;
 
-	/** Voxel index for a key, or -1 when empty. */
+	/** Voxel index for a key, or -1 when empty (binary search). */
 	int64_t find(const VoxelKey& k) const;
 
-	/** Point indices of a voxel, as a contiguous range of pointOrder(). */
+	/** Point indices of a voxel, as a contiguous range; ascending within a voxel. */
 	const uint32_t* begin(size_t voxel) const { return order_.data() + voxelStart_[voxel]; }
 	const uint32_t* end(size_t voxel) const { return order_.data() + voxelStart_[voxel + 1]; }
 	size_t voxelSize(size_t voxel) const { return voxelStart_[voxel + 1] - voxelStart_[voxel]; }
+	/** Position of a voxel's first point in the sorted order (begin(v) - begin(0)). */
+	size_t voxelOffset(size_t voxel) const { return voxelStart_[voxel]; }
 
-	/** Voxel of each point (index into voxels). */
-	uint32_t voxelOfPoint(size_t pointIndex) const { return voxelOfPoint_[pointIndex]; }
-
-	/** Calls f(voxelIndex) for every non-empty voxel in the (2r+1)^3 block around k. */
+	/** Calls f(voxelIndex) for every non-empty voxel in the (2r+1)^3 block
+	 *  around k, in ascending voxel index. Binary searches: for sweeping
+	 *  all voxels, NeighbourSweep is much faster. */
 	template <typename F>
 	void forEachNeighbourVoxel(const VoxelKey& k, int r, F&& f) const
 	{
@@ -53,18 +60,34 @@ class VoxelGrid
 				}
 	}
 
+	/** The 3x3x3 neighbourhoods of voxels visited in ascending order: nine
+	 *  cursors (one per row y-1..y+1, z-1..z+1) only move forward, so a
+	 *  sweep over V voxels costs O(V) sequential reads. */
+	class NeighbourSweep
+	{
+	   public:
+		NeighbourSweep(const VoxelGrid& g, size_t firstVoxel);
+		/** Fills `out` with the non-empty voxels of v's 3x3x3 block (v
+		 *  included) in ascending index; returns their number (<= 27). v must
+		 *  not be less than the previous call's. */
+		int neighbours(size_t v, uint32_t (&out)[27]);
+
+	   private:
+		const VoxelGrid& g_;
+		size_t cursor_[9];
+	};
+
    private:
-	static uint64_t pack(const VoxelKey& k);
+	uint64_t linear(const VoxelKey& k) const
+	{
+		return static_cast<uint64_t>(k.x) + dims_[0] * (static_cast<uint64_t>(k.y) + dims_[1] * static_cast<uint64_t>(k.z));
+	}
 	double cellSize_;
 	Eigen::Vector3d origin_;
+	uint64_t dims_[3] = {1, 1, 1};  // cells per axis, with a slack of 2 on either side
 	std::vector<uint32_t> order_;  // point indices sorted by voxel
 	std::vector<uint32_t> voxelStart_;  // voxel v owns order_[voxelStart_[v], voxelStart_[v+1])
-	std::vector<VoxelKey> voxelKeys_;
-	std::vector<uint32_t> voxelOfPoint_;
-	// Open-addressing hash: packed key -> voxel index.
-	std::vector<uint64_t> hashKeys_;
-	std::vector<uint32_t> hashValues_;
-	uint64_t hashMask_ = 0;
+	std::vector<uint64_t> keys_;  // linear key of each voxel, ascending
 };
 
 }  // namespace tagmap
