@@ -27,7 +27,7 @@ struct TagDecoder::Impl
 {
 	TagDecoderParams params;
 	apriltag_detector_t* detector = nullptr;
-	std::vector<AprilTagFamilyPtr> aprilFamilies;
+	std::vector<std::shared_ptr<apriltag_family>> aprilFamilies;  // tables shared by all decoders
 	std::vector<ArucoPass> arucoPasses;
 	cv::Ptr<cv::aruco::DetectorParameters> arucoParams;
 
@@ -101,10 +101,9 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 				impl_->detector->refine_edges = 1;
 				impl_->detector->decode_sharpening = 0.25;
 			}
-			impl_->aprilFamilies.push_back(createAprilTagFamily(name));
-			apriltag_family_t* fam = impl_->aprilFamilies.back().get();
-			const int bits = fam->ncodes > 10000 ? std::min(1, params.maxBitsCorrected) : params.maxBitsCorrected;
-			apriltag_detector_add_family_bits(impl_->detector, fam, bits);
+			const int bits = info->idCount > 10000 ? std::min(1, params.maxBitsCorrected) : params.maxBitsCorrected;
+			impl_->aprilFamilies.push_back(sharedAprilTagFamily(name, bits));
+			apriltag_detector_add_family_bits(impl_->detector, impl_->aprilFamilies.back().get(), bits);
 		}
 		else
 			aruco.push_back(info);
@@ -135,7 +134,9 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 
 TagDecoder::~TagDecoder()
 {
-	if (impl_->detector) apriltag_detector_destroy(impl_->detector);
+	if (!impl_->detector) return;
+	zarray_clear(impl_->detector->tag_families);  // the tables are shared: not the detector's to free
+	apriltag_detector_destroy(impl_->detector);
 }
 
 std::vector<DecodedTag2D> TagDecoder::decode(const cv::Mat& gray8) const

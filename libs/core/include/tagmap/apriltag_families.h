@@ -21,6 +21,14 @@ const std::vector<std::string>& aprilTagFamilyNames();
  *  decode tables inside it). Throws std::invalid_argument if unknown. */
 AprilTagFamilyPtr createAprilTagFamily(const std::string& name);
 
+/** The family with its decode tables for up to `bitsCorrected` corrected
+ *  bits, built once and shared by every caller while any holds it (the
+ *  tables are read-only during detection; tagStandard52h13 alone is over
+ *  100 MB). Add it to a detector with apriltag_detector_add_family_bits
+ *  (which then only registers it), and detach it before destroying that
+ *  detector: zarray_clear(detector->tag_families). */
+std::shared_ptr<apriltag_family> sharedAprilTagFamily(const std::string& name, int bitsCorrected);
+
 /** OpenCV dictionary for an "aruco_*" family name. */
 cv::Ptr<cv::aruco::Dictionary> arucoDictionary(const std::string& name);
 
