@@ -43,7 +43,7 @@ for t in "${TARGETS[@]}"; do
 	else
 		status=1
 		echo "ci-fuzz: $t FAILED; the input is in $findings/, the report in $log:"
-		grep -E 'ERROR|runtime error|SUMMARY|Test unit written' "$log" | head -20
+		grep -E 'ERROR|ALARM|runtime error|SUMMARY|Test unit written' "$log" | head -20 || true
 	fi
 done
 exit $status

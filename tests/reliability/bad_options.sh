@@ -74,6 +74,7 @@ config_case bad-variant 'image_variants: [raw, sharp]' "sharp"
 config_case not-a-map '- tag_size' "map"
 config_case section-not-map 'gradient: 3' "gradient"
 config_case syntax-error $'gradient:\n  threshold: [0.3\n  min_neighbours: 6' "YAML"
+config_case not-utf8 "$(printf '%%\x80')" "line 1, column 2: not UTF-8"
 config_case tabs $'gradient:\n\tthreshold: 0.3' "YAML"
 
 CASE=config-missing

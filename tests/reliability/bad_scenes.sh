@@ -29,6 +29,8 @@ scene_case unknown-sensor "$(good_with 's/sensor: tls/sensor: nope/')" "nope"
 scene_case huge-step-count "$(good_with 's/step_deg: \[0.08, 0.08\]/step_deg: [1e-9, 1e-9]/')" "step"
 scene_case nan-position "$(good_with 's/position: \[3, 0.4, 1.4\]/position: [.nan, 0.4, 1.4]/')" "position"
 scene_case not-a-map "- just a list" "map"
+# libfyaml loops forever on this one (found by fuzz_scene).
+scene_case not-utf8 "$(printf '%%\xff\xff ')" "line 1, column 2: not UTF-8"
 scene_case empty "" "empty|map|name"
 
 CASE=scene-missing

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -15,8 +16,43 @@
 
 namespace tagmap
 {
+namespace
+{
+/** Offset of the first byte that is not part of valid UTF-8, or npos. */
+size_t firstInvalidUtf8(const std::string& text)
+{
+	const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+	const size_t n = text.size();
+	for (size_t i = 0; i < n;)
+	{
+		const unsigned c = p[i];
+		const size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
+		if (len == 0 || (len == 2 && c < 0xc2) || len > n - i) return i;
+		for (size_t k = 1; k < len; k++)
+			if ((p[i + k] & 0xc0) != 0x80) return i;
+		i += len;
+	}
+	return std::string::npos;
+}
+
+/** Refuses text that is not UTF-8: YAML is Unicode, and libfyaml (as of
+ *  Debian 12) loops forever on some invalid bytes, e.g. right after '%'. */
+void checkUtf8(const std::string& text, const std::string& file)
+{
+	const size_t bad = firstInvalidUtf8(text);
+	if (bad == std::string::npos) return;
+	const size_t lineStart = text.rfind('\n', bad == 0 ? 0 : bad - 1);
+	const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(bad), '\n'));
+	const size_t column = lineStart == std::string::npos || bad == 0 ? bad + 1 : bad - lineStart;
+	throw InputError(file, "",
+					 "not valid YAML: line " + std::to_string(line) + ", column " + std::to_string(column) +
+						 ": not UTF-8 text (byte offset " + std::to_string(bad) + ")");
+}
+}  // namespace
+
 mrpt::containers::yaml parseYamlText(const std::string& text, const std::string& file)
 {
+	checkUtf8(text, file);
 	// MRPT 2.5.8 hands libfyaml's syntax errors to stderr and mostly returns
 	// a partial tree instead of throwing, which would turn a typo into a
 	// confusing "missing key" later. So stderr is captured while parsing and
