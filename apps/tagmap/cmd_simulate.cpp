@@ -1,4 +1,5 @@
 // `tagmap simulate SCENE.yaml --out DIR [...]`: a thin shell over tagmap_sim.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -8,6 +9,7 @@
 #include "tagmap/errors.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/sim_outputs.h"
+#include "tagmap/sim/sim_rawlog.h"
 #include "tagmap/sim/simulate.h"
 
 namespace tagmap::app
@@ -17,10 +19,13 @@ namespace
 const char* kUsage =
 	"Usage: tagmap simulate SCENE.yaml --out DIR [--seed N] [--intensity-scale 1|255|65535]\n"
 	"                       [--points N] [--param NAME=VALUE] [--threads N] [--simplemap]\n"
+	"                       [--run NAME] [--rawlog FILE]\n"
 	"Simulates LiDAR scans of a YAML scene and writes DIR/map.pcd and DIR/ground_truth.json;\n"
 	"with --simplemap also DIR/scans.simplemap, DIR/trajectory_true.tum, DIR/trajectory_drifted.tum.\n"
 	"  --points N        rescale the sensors' density for a map of about N points\n"
-	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml)\n";
+	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml)\n"
+	"  --run NAME        simulate only this run of the scene\n"
+	"  --rawlog FILE     also write an MRPT rawlog (odometry + scans) and DIR/trajectory_true.tum\n";
 
 sim::SceneParameters parseParam(const std::string& s)
 {
@@ -36,7 +41,7 @@ int runSimulate(int argc, char** argv)
 {
 	try
 	{
-		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads"},
+		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads", "--run", "--rawlog"},
 									   {"--simplemap", "--help"});
 		if (a.has("--help"))
 		{
@@ -57,12 +62,22 @@ int runSimulate(int argc, char** argv)
 		opt.intensityScale = a.getDouble("--intensity-scale", 1);
 		if (!(opt.intensityScale > 0)) throw cli::UsageError("--intensity-scale must be > 0");
 
-		const sim::Scene scene =
+		sim::Scene scene =
 			sim::loadScene(a.positional[0], a.has("--param") ? parseParam(a.get("--param")) : sim::SceneParameters{});
+		if (a.has("--run"))
+		{
+			auto& runs = scene.runs;
+			runs.erase(std::remove_if(runs.begin(), runs.end(), [&](const sim::ScanRun& r) { return r.name != a.get("--run"); }),
+					   runs.end());
+			if (scene.runs.empty()) throw cli::UsageError("--run: the scene has no run '" + a.get("--run") + "'");
+		}
 		// Fail on an unwritable output now, not after the simulation.
 		checkOutputWritable((std::filesystem::path(a.get("--out")) / "map.pcd").string());
 		const sim::SimulationOutput out = sim::simulate(scene, opt);
 		sim::writeSimulationOutputs(a.get("--out"), out, {a.has("--simplemap"), opt.seed});
+		if (a.has("--rawlog"))
+			sim::writeSimulationRawlog(a.get("--rawlog"),
+									   (std::filesystem::path(a.get("--out")) / "trajectory_true.tum").string(), out);
 
 		std::cout << "scene " << out.sceneName << ": " << out.map.size() << " points from " << out.frames.size()
 				  << " frames, " << out.truth.size() << " tags";

@@ -9,4 +9,6 @@ int runSimulate(int argc, char** argv);
 int runDetect(int argc, char** argv);
 int runConfig(int argc, char** argv);
 int runCompare(int argc, char** argv);
+int runObserve(int argc, char** argv);
+int runLocalize(int argc, char** argv);
 }  // namespace tagmap::app

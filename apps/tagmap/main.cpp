@@ -18,6 +18,8 @@ const Command kCommands[] = {
 	{"detect", tagmap::app::runDetect, "find fiducial tags in a point-cloud map and write their poses"},
 	{"simulate", tagmap::app::runSimulate, "simulate LiDAR maps of a YAML scene, with exact ground truth"},
 	{"compare", tagmap::app::runCompare, "score a result file against ground truth (found, missed, errors)"},
+	{"observe", tagmap::app::runObserve, "detect tags in each scan of a rawlog; add beacon ranges and tag poses"},
+	{"localize", tagmap::app::runLocalize, "localize a LiDAR in a tag map (particle filter or direct), score it"},
 	{"config", tagmap::app::runConfig, "print the effective detection parameters as YAML (--dump)"},
 };
 

@@ -6,5 +6,10 @@
 #include <mrpt/core/initializer.h>
 
 #include "tagmap/maps/CTagMap.h"
+#include "tagmap/obs/CObservationTagPoses.h"
 
-MRPT_INITIALIZER(tagmap_register_mrpt_classes) { mrpt::rtti::registerClass(CLASS_ID(tagmap::maps::CTagMap)); }
+MRPT_INITIALIZER(tagmap_register_mrpt_classes)
+{
+	mrpt::rtti::registerClass(CLASS_ID(tagmap::maps::CTagMap));
+	mrpt::rtti::registerClass(CLASS_ID(tagmap::obs::CObservationTagPoses));
+}

@@ -1,0 +1,77 @@
+// `tagmap observe IN.rawlog OUT.rawlog`: a thin shell over
+// tagmap::localize::observeRawlog (docs/LOCALIZATION.md).
+#include <mrpt/obs/CRawlog.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "cli.h"
+#include "commands.h"
+#include "pipeline_args.h"
+#include "tagmap/atomic_file.h"
+#include "tagmap/errors.h"
+#include "tagmap/localize/observe_rawlog.h"
+#include "tagmap/localize/scan_tags.h"
+
+namespace tagmap::app
+{
+namespace
+{
+const char* kUsage =
+	"Usage: tagmap observe IN.rawlog OUT.rawlog [--family F] [--tag-size S] [--config FILE]\n"
+	"                      [--threads N] [--quiet]\n"
+	"Detects the tags in every LiDAR scan of IN (sensor frame) and writes OUT: IN with,\n"
+	"next to each scan, a CObservationBeaconRanges (range to each tag centre, beacon IDs\n"
+	"as in docs/MRPT.md) and a tagmap::obs::CObservationTagPoses (T_sensor_tag + 6x6\n"
+	"covariance; RawLogViewer -l build/lib/libtagmap_mrpt_plugin.so shows it).\n"
+	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md).\n";
+
+/** Single-scan parameters unless a config file says otherwise; the flags win. */
+PipelineParams observeParams(const cli::Args& a)
+{
+	PipelineParams p = pipelineParamsFromArgs(a);
+	if (a.has("--config")) return p;
+	PipelineParams s = localize::singleScanPipelineParams();
+	s.families = p.families;
+	s.tagSize = p.tagSize;
+	s.threads = p.threads;
+	return s;
+}
+}  // namespace
+
+int runObserve(int argc, char** argv)
+{
+	return cli::runCommand("observe", [&] {
+		const cli::Args a = cli::parse(argc, argv, 1, pipelineOptions(), {"--help", "--quiet"});
+		if (a.has("--help"))
+		{
+			std::cout << kUsage << pipelineOptionsHelp();
+			return 0;
+		}
+		if (a.positional.size() != 2) throw cli::UsageError("expected IN.rawlog and OUT.rawlog");
+		const std::string in = a.positional[0], out = a.positional[1];
+		const PipelineParams params = observeParams(a);
+		if (!std::filesystem::is_regular_file(in)) throw InputError(in, "", "no such file");
+		checkOutputWritable(out);
+
+		mrpt::obs::CRawlog log;
+		if (!log.loadFromRawLogFile(in) || log.empty()) throw InputError(in, "", "not a readable MRPT rawlog");
+		const bool quiet = a.has("--quiet");
+		localize::ObserveReport report;
+		const mrpt::obs::CRawlog observed =
+			localize::observeRawlog(log, Pipeline(params), {}, &report, [&](size_t done, size_t total) {
+				// A line per tenth: readable in logs and on terminals alike.
+				if (!quiet && (done * 10 / total != (done - 1) * 10 / total || done == total))
+					std::fprintf(stderr, "tagmap observe: scan %zu/%zu\n", done, total);
+			});
+		if (report.scans == 0) throw InputError(in, "", "no LiDAR observation with intensity");
+		writeFileAtomicallyByName(out, [&](const std::string& tmp) {
+			if (!observed.saveToRawLogFile(tmp)) throw InputError(tmp, "", "cannot write rawlog");
+		});
+		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s -> %s\n", report.scans,
+					report.scansWithTags, report.tagsSeen, report.seconds, out.c_str());
+		return 0;
+	});
+}
+}  // namespace tagmap::app

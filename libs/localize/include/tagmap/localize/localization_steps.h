@@ -1,0 +1,33 @@
+// A rawlog written by `tagmap observe`, as the steps a localizer runs:
+// one per scan, with the odometry since the previous scan and what the scan
+// saw of the tags.
+#pragma once
+
+#include <mrpt/obs/CActionRobotMovement2D.h>
+#include <mrpt/obs/CObservationBeaconRanges.h>
+#include <mrpt/obs/CRawlog.h>
+#include <mrpt/poses/CPose2D.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <vector>
+
+#include "tagmap/obs/CObservationTagPoses.h"
+
+namespace tagmap::localize
+{
+struct LocalizationStep
+{
+	double stamp = 0;  // seconds (the scan's time stamp)
+	/** Odometry since the previous step: every 2D movement in between
+	 *  composed, with the motion model of the last one. Null if none. */
+	mrpt::obs::CActionRobotMovement2D::Ptr motion;
+	mrpt::obs::CObservationBeaconRanges::Ptr ranges;  // never null (may hold no range)
+	obs::CObservationTagPoses::Ptr tags;  // never null (may hold no tag)
+	mrpt::poses::CPose3D sensorPose;  // the LiDAR on the robot
+};
+
+/** Throws InputError (naming `sourceName`) if the rawlog has no
+ *  CObservationTagPoses at all, i.e. `tagmap observe` did not run on it. */
+std::vector<LocalizationStep> localizationSteps(const mrpt::obs::CRawlog& log, const std::string& sourceName);
+
+}  // namespace tagmap::localize

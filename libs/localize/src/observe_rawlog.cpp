@@ -1,0 +1,103 @@
+#include "tagmap/localize/observe_rawlog.h"
+
+#include <mrpt/obs/CSensoryFrame.h>
+
+#include <chrono>
+
+#include "tagmap/localize/rawlog_visit.h"
+#include "tagmap/localize/scan_tags.h"
+#include "tagmap/obs/CObservationTagPoses.h"
+
+namespace tagmap::localize
+{
+namespace
+{
+bool isLidar(const mrpt::obs::CObservation& o)
+{
+	// Our own outputs carry no points; everything else is tried as a scan.
+	return !dynamic_cast<const obs::CObservationTagPoses*>(&o) &&
+		   !dynamic_cast<const mrpt::obs::CObservationBeaconRanges*>(&o);
+}
+
+class Observer
+{
+   public:
+	Observer(const Pipeline& pipeline, const ObserveParams& params, ObserveReport& report, size_t total,
+			 const ObserveProgress& progress)
+		: pipeline_(pipeline), params_(params), report_(report), total_(total), progress_(progress)
+	{
+	}
+
+	/** The tag observations of one scan (empty if it is not a LiDAR scan). */
+	std::vector<mrpt::obs::CObservation::Ptr> observe(const mrpt::obs::CObservation& scanObs)
+	{
+		if (!isLidar(scanObs)) return {};
+		const auto scan = scanInSensorFrame(scanObs);
+		if (!scan) return {};
+		mrpt::poses::CPose3D sensorPose;
+		scanObs.getSensorPose(sensorPose);
+
+		auto tags = obs::CObservationTagPoses::Create();
+		tags->sensorLabel = scanObs.sensorLabel + params_.tagsLabelSuffix;
+		tags->timestamp = scanObs.timestamp;
+		tags->sensorPose = sensorPose;
+		tags->tags = detectTagsInScan(pipeline_, *scan);
+
+		auto ranges = makeBeaconRanges(tags->tags, sensorPose, params_.ranges);
+		ranges->sensorLabel = scanObs.sensorLabel + params_.rangesLabelSuffix;
+		ranges->timestamp = scanObs.timestamp;
+
+		report_.scans++;
+		report_.scansWithTags += !tags->tags.empty();
+		report_.tagsSeen += tags->tags.size();
+		if (progress_) progress_(report_.scans, total_);
+		return {ranges, tags};
+	}
+
+   private:
+	const Pipeline& pipeline_;
+	const ObserveParams& params_;
+	ObserveReport& report_;
+	size_t total_;
+	const ObserveProgress& progress_;
+};
+
+size_t countObservations(const mrpt::obs::CRawlog& in)
+{
+	size_t n = 0;
+	visitRawlog(in, {{}, [&](const mrpt::obs::CSensoryFrame& sf) { n += sf.size(); },
+					 [&](const mrpt::obs::CObservation::Ptr&) { n++; }});
+	return n;
+}
+}  // namespace
+
+mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& pipeline, const ObserveParams& params,
+								 ObserveReport* reportOut, const ObserveProgress& progress)
+{
+	const auto t0 = std::chrono::steady_clock::now();
+	ObserveReport report;
+	Observer observer(pipeline, params, report, countObservations(in), progress);
+	mrpt::obs::CRawlog out;
+	visitRawlog(in, {[&](const mrpt::obs::CActionCollection& a) {
+						 mrpt::obs::CActionCollection copy = a;  // CRawlog::insert takes a non-const one
+						 out.insert(copy);
+					 },
+					 [&](const mrpt::obs::CSensoryFrame& in_sf) {
+						 mrpt::obs::CSensoryFrame sf;
+						 for (const auto& o : in_sf)
+						 {
+							 sf.insert(o);
+							 for (const auto& added : observer.observe(*o)) sf.insert(added);
+						 }
+						 out.insert(sf);
+					 },
+					 [&](const mrpt::obs::CObservation::Ptr& o) {
+						 out.insert(o);
+						 for (const auto& added : observer.observe(*o)) out.insert(added);
+					 }});
+	report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	if (reportOut) *reportOut = report;
+	return out;
+}
+
+}  // namespace tagmap::localize
