@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "tagmap/parallel.h"
 
@@ -25,50 +26,85 @@ double robustIntensitySpread(const float* is, size_t n)
 
 namespace
 {
-struct Point4
+// The map's points in voxel order, one array per field: a voxel's 3x3x3
+// block is a few contiguous runs (one per row), read four points at a time.
+struct SortedPoints
 {
-	float x, y, z, i;
+	std::vector<float> x, y, z, i;
 };
 
-// Least-squares intensity slope at `centre` from the points within r of
-// `pts` (the 3x3x3 voxel block around the centre's voxel, in ascending
-// voxel order: the same points, in the same order, as a neighbour query).
-// Coordinates are taken relative to the centre for numerical stability.
-// The ridge term keeps the fit well-posed on a plane, where the slope
-// along the normal is unobservable; it then comes out near zero.
-double gradientNorm(const Eigen::Vector3f& centre, const std::vector<Point4>& pts, double radius, int minNeighbours)
+struct Span
 {
-	const double r2 = radius * radius;
-	double sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
-	double sx = 0, sy = 0, sz = 0, sxi = 0, syi = 0, szi = 0, si = 0;
-	int count = 0;
-	for (const Point4& q : pts)
+	uint32_t begin, end;
+};
+
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = int32_t __attribute__((vector_size(16)));
+
+float sum4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
+// Least-squares intensity slope at `centre` from the points within r among
+// `spans` (the 3x3x3 voxel block around the centre's voxel). Coordinates
+// are taken relative to the centre for numerical stability. The ridge term
+// keeps the fit well-posed on a plane, where the slope along the normal is
+// unobservable; it then comes out near zero. The sums are float, four
+// points per step in a fixed order, so the result is the same on any
+// thread; a point outside r adds exact zeros (no branch per neighbour).
+double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, const Span* spans, int spanCount,
+					double radius, int minNeighbours)
+{
+	const float cx = centre.x(), cy = centre.y(), cz = centre.z(), r2 = static_cast<float>(radius * radius);
+	const Float4 vcx = {cx, cx, cx, cx}, vcy = {cy, cy, cy, cy}, vcz = {cz, cz, cz, cz}, vr2 = {r2, r2, r2, r2};
+	const Float4 one = {1, 1, 1, 1};
+	Float4 sxx{}, sxy{}, sxz{}, syy{}, syz{}, szz{}, sx{}, sy{}, sz{}, sxi{}, syi{}, szi{}, si{}, inside{};
+	auto accumulate = [&](Float4 X, Float4 Y, Float4 Z, Float4 I, Float4 valid) {
+		const Float4 dx = X - vcx, dy = Y - vcy, dz = Z - vcz;
+		const Int4 near = (dx * dx + dy * dy + dz * dz) <= vr2;
+		const Float4 w = reinterpret_cast<Float4>(near & reinterpret_cast<Int4>(valid));
+		const Float4 wx = w * dx, wy = w * dy, wz = w * dz;
+		sxx += wx * dx;
+		sxy += wx * dy;
+		sxz += wx * dz;
+		syy += wy * dy;
+		syz += wy * dz;
+		szz += wz * dz;
+		sx += wx;
+		sy += wy;
+		sz += wz;
+		sxi += wx * I;
+		syi += wy * I;
+		szi += wz * I;
+		si += w * I;
+		inside += w;
+	};
+	for (int s = 0; s < spanCount; s++)
 	{
-		const double dx = q.x - centre.x(), dy = q.y - centre.y(), dz = q.z - centre.z();
-		if (dx * dx + dy * dy + dz * dz > r2) continue;
-		const double I = q.i;
-		sxx += dx * dx;
-		sxy += dx * dy;
-		sxz += dx * dz;
-		syy += dy * dy;
-		syz += dy * dz;
-		szz += dz * dz;
-		sx += dx;
-		sy += dy;
-		sz += dz;
-		sxi += dx * I;
-		syi += dy * I;
-		szi += dz * I;
-		si += I;
-		count++;
+		uint32_t k = spans[s].begin;
+		for (; k + 4 <= spans[s].end; k += 4)
+		{
+			Float4 X, Y, Z, I;
+			std::memcpy(&X, pts.x.data() + k, sizeof X);
+			std::memcpy(&Y, pts.y.data() + k, sizeof Y);
+			std::memcpy(&Z, pts.z.data() + k, sizeof Z);
+			std::memcpy(&I, pts.i.data() + k, sizeof I);
+			accumulate(X, Y, Z, I, one);
+		}
+		if (k < spans[s].end)  // the last 1-3 points, the rest of the lanes masked off
+		{
+			Float4 X = vcx, Y = vcy, Z = vcz, I{}, valid{};
+			for (int l = 0; k < spans[s].end; k++, l++)
+				X[l] = pts.x[k], Y[l] = pts.y[k], Z[l] = pts.z[k], I[l] = pts.i[k], valid[l] = 1;
+			accumulate(X, Y, Z, I, valid);
+		}
 	}
+	const int count = static_cast<int>(sum4(inside));
 	if (count < minNeighbours) return 0;
 	Eigen::Matrix3d S;
-	S << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
-	const Eigen::Vector3d mx = Eigen::Vector3d(sx, sy, sz) / count;
-	const double mi = si / count;
+	S << sum4(sxx), sum4(sxy), sum4(sxz), sum4(sxy), sum4(syy), sum4(syz), sum4(sxz), sum4(syz), sum4(szz);
+	const Eigen::Vector3d mx = Eigen::Vector3d(sum4(sx), sum4(sy), sum4(sz)) / count;
+	const double mi = sum4(si) / count;
 	Eigen::Matrix3d C = S / count - mx * mx.transpose();
-	const Eigen::Vector3d c = Eigen::Vector3d(sxi, syi, szi) / count - mx * mi;
+	const Eigen::Vector3d c = Eigen::Vector3d(sum4(sxi), sum4(syi), sum4(szi)) / count - mx * mi;
 	C += Eigen::Matrix3d::Identity() * (1e-3 * C.trace() + 1e-12);
 	return C.ldlt().solve(c).norm();
 }
@@ -85,16 +121,20 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 	if (out.intensitySpread <= 0 || n == 0) return out;
 	const double cut = p.threshold * out.intensitySpread / grid.cellSize();
 
-	// The points in voxel order, x y z I side by side: a voxel's 3x3x3 block
-	// is then nine contiguous runs (one per row), read by a forward sweep,
-	// instead of 27 random lookups and scattered loads per point.
-	std::vector<Point4> sorted(n);
+	// The points in voxel order: a voxel's 3x3x3 block is then nine
+	// contiguous runs (one per row), read by a forward sweep, instead of 27
+	// random lookups and scattered loads per point.
+	SortedPoints sorted;
+	for (auto* a : {&sorted.x, &sorted.y, &sorted.z, &sorted.i}) a->resize(n);
 	const uint32_t* order = grid.begin(0);
 	parallelForBlocks(n, threads, [&](size_t b, size_t e) {
 		for (size_t k = b; k < e; k++)
 		{
 			const uint32_t j = order[k];
-			sorted[k] = {xs[j], ys[j], zs[j], is[j]};
+			sorted.x[k] = xs[j];
+			sorted.y[k] = ys[j];
+			sorted.z[k] = zs[j];
+			sorted.i[k] = is[j];
 		}
 	}, 1 << 16);
 
@@ -106,28 +146,34 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 	parallelForBlocks(grid.voxelCount(), threads, [&](size_t vb, size_t ve) {
 		VoxelGrid::NeighbourSweep sweep(grid, vb);
 		uint32_t block[27];
-		std::vector<Point4> near;
-		near.reserve(256);
+		Span spans[27];
 		for (size_t v = vb; v < ve; v++)
 		{
+			// The block's voxels in ascending order; consecutive voxels (one
+			// row) hold consecutive points, so they join into one span.
 			const int count = sweep.neighbours(v, block);
-			near.clear();
+			int spanCount = 0;
 			for (int b = 0; b < count; b++)
-				near.insert(near.end(), sorted.begin() + grid.voxelOffset(block[b]),
-							sorted.begin() + grid.voxelOffset(block[b] + 1));
+			{
+				const auto first = static_cast<uint32_t>(grid.voxelOffset(block[b]));
+				const auto last = static_cast<uint32_t>(grid.voxelOffset(block[b] + 1));
+				if (spanCount > 0 && spans[spanCount - 1].end == first) spans[spanCount - 1].end = last;
+				else spans[spanCount++] = {first, last};
+			}
 			const size_t first = grid.voxelOffset(v), last = grid.voxelOffset(v + 1);
 			Eigen::Vector3f c = Eigen::Vector3f::Zero();
-			for (size_t k = first; k < last; k++) c += Eigen::Vector3f(sorted[k].x, sorted[k].y, sorted[k].z);
+			for (size_t k = first; k < last; k++) c += Eigen::Vector3f(sorted.x[k], sorted.y[k], sorted.z[k]);
 			c /= static_cast<float>(last - first);
 			const Eigen::Vector3f mid = grid.voxelCenter(grid.keyOfVoxel(v)).cast<float>();
 			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre's key then.
 			const Eigen::Vector3f probe = grid.keyOf(c) == grid.keyOfVoxel(v) ? c : mid;
 			// 1.5 r: an edge anywhere in the voxel is within reach of the centroid.
-			if (gradientNorm(probe, near, 1.5 * grid.cellSize(), p.minNeighbours) < 0.5 * cut) continue;
+			if (gradientNorm(probe, sorted, spans, spanCount, 1.5 * grid.cellSize(), p.minNeighbours) < 0.5 * cut)
+				continue;
 			for (size_t k = first; k < last; k++)
 			{
-				const Eigen::Vector3f q(sorted[k].x, sorted[k].y, sorted[k].z);
-				keep[order[k]] = gradientNorm(q, near, grid.cellSize(), p.minNeighbours) >= cut;
+				const Eigen::Vector3f q(sorted.x[k], sorted.y[k], sorted.z[k]);
+				keep[order[k]] = gradientNorm(q, sorted, spans, spanCount, grid.cellSize(), p.minNeighbours) >= cut;
 			}
 		}
 	}, 256);

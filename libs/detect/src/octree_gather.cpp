@@ -2,19 +2,47 @@
 
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "tagmap/parallel.h"
 
 namespace tagmap
 {
-OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, const GatherParams& p) : grid_(grid), params_(p)
+OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, const GatherParams& p, unsigned threads)
+	: grid_(grid), params_(p)
 {
 	tree_ = std::make_unique<octomap::OcTree>(grid.cellSize() * p.octreeCellsPerLeaf);
-	// Only occupancy matters: mark each occupied leaf once, then let OctoMap
-	// prune uniform regions.
-	for (size_t v = 0; v < grid.voxelCount(); v++)
+	// Only occupancy matters: mark each occupied leaf once (a leaf holds up
+	// to octreeCellsPerLeaf^3 voxels; repeated hits only raise its log-odds),
+	// then let OctoMap fill in the inner nodes.
+	threads = grid.voxelCount() < 65536 ? 1u : resolveThreads(threads);
+	std::vector<std::vector<uint64_t>> parts(threads);
+	parallelForChunks(grid.voxelCount(), threads, [&](unsigned c, size_t b, size_t e) {
+		std::vector<uint64_t>& part = parts[c];
+		for (size_t v = b; v < e; v++)
+		{
+			const Eigen::Vector3d m = grid.voxelCenter(grid.keyOfVoxel(v));
+			octomap::OcTreeKey k;
+			if (!tree_->coordToKeyChecked(octomap::point3d(m.x(), m.y(), m.z()), k)) continue;
+			const uint64_t packed = k[0] | (uint64_t{k[1]} << 16) | (uint64_t{k[2]} << 32);
+			if (part.empty() || part.back() != packed) part.push_back(packed);  // runs along x share a leaf
+		}
+	});
+	std::vector<uint64_t> leaves;
+	for (auto& part : parts)
 	{
-		const Eigen::Vector3d c = grid.voxelCenter(grid.keyOfVoxel(v));
-		tree_->updateNode(octomap::point3d(c.x(), c.y(), c.z()), true, true);
+		leaves.insert(leaves.end(), part.begin(), part.end());
+		part = {};
+	}
+	std::sort(leaves.begin(), leaves.end());
+	leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
+	for (uint64_t packed : leaves)
+	{
+		const octomap::OcTreeKey k(static_cast<octomap::key_type>(packed & 0xffff),
+								   static_cast<octomap::key_type>((packed >> 16) & 0xffff),
+								   static_cast<octomap::key_type>(packed >> 32));
+		tree_->updateNode(k, true, true);
 	}
 	tree_->updateInnerOccupancy();
 	leaves_ = tree_->getNumLeafNodes();

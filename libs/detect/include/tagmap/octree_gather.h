@@ -30,7 +30,8 @@ struct GatherParams
 class OctreeGatherer
 {
    public:
-	OctreeGatherer(const VoxelGrid& grid, const GatherParams& p);
+	/** `threads`: for the build (0: all cores; the tree does not depend on it). */
+	OctreeGatherer(const VoxelGrid& grid, const GatherParams& p, unsigned threads = 0);
 	~OctreeGatherer();
 
 	/** Map indices of the points inside `box` enlarged by the parameters. */

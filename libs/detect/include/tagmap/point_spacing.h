@@ -13,7 +13,11 @@ struct PointSpacingParams
 	size_t samples = 2000;  // points whose nearest neighbour is measured
 };
 
-/** Median nearest-neighbour distance of the cloud (0 if fewer than 2 points). */
-double estimatePointSpacing(const float* xs, const float* ys, const float* zs, size_t n, const PointSpacingParams& p = {});
+/** Median nearest-neighbour distance of `p.samples` evenly strided points
+ *  (exact: found among all n points), 0 if fewer than 2 points. One or two
+ *  passes over the map with `threads` threads (0: all cores; the result
+ *  does not depend on it). */
+double estimatePointSpacing(const float* xs, const float* ys, const float* zs, size_t n, const PointSpacingParams& p = {},
+							unsigned threads = 0);
 
 }  // namespace tagmap
