@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tagmap/parallel.h"
+#include "tagmap/voxel_grid.h"
 
 namespace tagmap
 {
@@ -149,21 +150,8 @@ double estimatePointSpacing(const float* xs, const float* ys, const float* zs, s
 {
 	if (n < 2) return 0;
 	threads = n < 65536 ? 1u : resolveThreads(threads);
-	std::vector<Eigen::Array3f> los(threads, Eigen::Array3f::Constant(std::numeric_limits<float>::max()));
-	std::vector<Eigen::Array3f> his(threads, Eigen::Array3f::Constant(-std::numeric_limits<float>::max()));
-	parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
-		Eigen::Array3f l = los[c], h = his[c];
-		for (size_t i = b; i < e; i++)
-		{
-			const Eigen::Array3f q(xs[i], ys[i], zs[i]);
-			l = l.min(q);
-			h = h.max(q);
-		}
-		los[c] = l;
-		his[c] = h;
-	});
-	for (unsigned c = 1; c < threads; c++) los[0] = los[0].min(los[c]), his[0] = his[0].max(his[c]);
-	const Eigen::Vector3d lo = los[0].cast<double>().matrix(), hi = his[0].cast<double>().matrix();
+	Eigen::Vector3d lo, hi;
+	pointBounds(xs, ys, zs, n, threads, lo, hi);
 	const Eigen::Vector3d ext = (hi - lo).cwiseMax(1e-3);
 	const size_t stride = std::max<size_t>(1, n / p.samples);
 	std::vector<size_t> samples;

@@ -58,6 +58,28 @@ void radixSort(std::vector<uint64_t>& a, int lowBit, int highBit, unsigned threa
 }
 }  // namespace
 
+void pointBounds(const float* xs, const float* ys, const float* zs, size_t n, unsigned threads, Eigen::Vector3d& lo,
+				 Eigen::Vector3d& hi)
+{
+	threads = std::max(1u, threads);
+	std::vector<Eigen::Array3f> los(threads, Eigen::Array3f::Constant(std::numeric_limits<float>::max()));
+	std::vector<Eigen::Array3f> his(threads, Eigen::Array3f::Constant(-std::numeric_limits<float>::max()));
+	parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
+		Eigen::Array3f l = los[c], h = his[c];
+		for (size_t i = b; i < e; i++)
+		{
+			const Eigen::Array3f q(xs[i], ys[i], zs[i]);
+			l = l.min(q);
+			h = h.max(q);
+		}
+		los[c] = l;
+		his[c] = h;
+	});
+	for (unsigned c = 1; c < threads; c++) los[0] = los[0].min(los[c]), his[0] = his[0].max(his[c]);
+	lo = n ? Eigen::Vector3d(los[0].cast<double>().matrix()) : Eigen::Vector3d::Zero();
+	hi = n ? Eigen::Vector3d(his[0].cast<double>().matrix()) : Eigen::Vector3d::Zero();
+}
+
 VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize, unsigned threads)
 	: cellSize_(cellSize)
 {
@@ -65,28 +87,8 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 	if (n >= std::numeric_limits<uint32_t>::max()) throw std::invalid_argument("too many points (max 4e9)");
 	threads = n < 65536 ? 1u : resolveThreads(threads);
 
-	// Bounds, per chunk then combined (min/max do not depend on the order).
-	std::vector<Eigen::Array3f> los(threads, Eigen::Array3f::Constant(std::numeric_limits<float>::max()));
-	std::vector<Eigen::Array3f> his(threads, Eigen::Array3f::Constant(-std::numeric_limits<float>::max()));
-	parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
-		Eigen::Array3f lo = los[c], hi = his[c];
-		for (size_t i = b; i < e; i++)
-		{
-			const Eigen::Array3f q(xs[i], ys[i], zs[i]);
-			lo = lo.min(q);
-			hi = hi.max(q);
-		}
-		los[c] = lo;
-		his[c] = hi;
-	});
-	Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-	if (n > 0)
-	{
-		Eigen::Array3f l = los[0], h = his[0];
-		for (unsigned c = 1; c < threads; c++) l = l.min(los[c]), h = h.max(his[c]);
-		lo = l.cast<double>().matrix();
-		hi = h.cast<double>().matrix();
-	}
+	Eigen::Vector3d lo, hi;
+	pointBounds(xs, ys, zs, n, threads, lo, hi);
 	// Two cells of slack on either side: neighbour keys (x +- 1) stay inside
 	// the box, so linear keys of neighbours never wrap into another row.
 	origin_ = lo - Eigen::Vector3d::Constant(2 * cellSize);

@@ -19,6 +19,11 @@ struct VoxelKey
 	bool operator==(const VoxelKey& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
+/** Axis-aligned bounds of n points (both zero when n == 0), with `threads`
+ *  threads (exact: min and max do not depend on the split). */
+void pointBounds(const float* xs, const float* ys, const float* zs, size_t n, unsigned threads, Eigen::Vector3d& lo,
+				 Eigen::Vector3d& hi);
+
 class VoxelGrid
 {
    public:
