@@ -76,14 +76,14 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	if (m.n < 16) return out;
 
 	StageTimer tSpacing(out, "point_spacing", m.n);
-	const double spacing = estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing);
+	const double spacing = estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing, threads);
 	tSpacing.done(1);
 	if (!(spacing > 0)) return out;
 	const double radius = params_.gradientRadiusSpacings * spacing;
 
 	report("neighbour_index", 0, 1);
 	StageTimer tGrid(out, "neighbour_index", m.n);
-	const VoxelGrid grid(m.xs, m.ys, m.zs, m.n, radius);
+	const VoxelGrid grid(m.xs, m.ys, m.zs, m.n, radius, threads);
 	tGrid.done(grid.voxelCount());
 	report("neighbour_index", 1, 1);
 
@@ -120,7 +120,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 
 	report("octree", 0, 1);
 	StageTimer tOctree(out, "octree", grid.voxelCount());
-	const OctreeGatherer gatherer(grid, params_.gather);
+	const OctreeGatherer gatherer(grid, params_.gather, threads);
 	tOctree.done(gatherer.occupiedLeaves());
 	report("octree", 1, 1);
 
