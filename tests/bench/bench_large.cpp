@@ -61,6 +61,14 @@ double peakRssBytes()
 	return static_cast<double>(ru.ru_maxrss) * 1024.0;
 }
 
+/** CPU time of this process so far (user + system, all threads), seconds. */
+double cpuSeconds()
+{
+	rusage ru{};
+	getrusage(RUSAGE_SELF, &ru);
+	return ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
 double loadAverage()
@@ -92,6 +100,7 @@ struct Row
 	size_t in = 0, out = 0;
 	bool points = true;  // items are points (a points/s rate makes sense)
 	double peak = 0;
+	double cpu = 0;  // CPU seconds (all threads) spent in the stage
 };
 
 // Child: one timed run of the detect path on the cached map of size n.
@@ -104,59 +113,68 @@ int measure(const Options& o, size_t n)
 	tagmap::io::LoadReport rep;
 	const mrpt::maps::CPointsMapXYZI map = tagmap::io::loadPointCloud(dir + "/map.pcd", &rep);
 	const auto t1 = Clock::now();
-	rows.push_back({"read_pcd", seconds(t0, t1), rep.pointsRead, map.size(), true, peakRssBytes()});
+	const double cpuRead = cpuSeconds();
+	rows.push_back({"read_pcd", seconds(t0, t1), rep.pointsRead, map.size(), true, peakRssBytes(), cpuRead});
 
 	tagmap::PipelineParams params;
 	params.threads = o.threads;
 	const tagmap::Pipeline pipeline(params);
-	// Peak RSS at each stage boundary the progress callback reveals.
-	std::vector<std::pair<std::string, double>> events;
+	// Peak RSS and CPU time at each stage boundary the progress callback reveals.
+	struct Event
+	{
+		std::string stage;
+		double peak, cpu;
+	};
+	std::vector<Event> events;
 	const tagmap::Detections found = pipeline.detect(map, [&](const std::string& stage, size_t, size_t) {
-		events.emplace_back(stage, peakRssBytes());
+		events.push_back({stage, peakRssBytes(), cpuSeconds()});
 	});
 	const auto t2 = Clock::now();
-	const double detectPeak = peakRssBytes();
+	const double detectPeak = peakRssBytes(), detectCpu = cpuSeconds();
+	double cpuBefore = cpuRead;
 	for (size_t i = 0; i < found.stages.size(); i++)
 	{
 		const auto& s = found.stages[i];
 		// Peak so far at the end of stage i: the first event of a later stage.
-		double peak = detectPeak;
+		double peak = detectPeak, cpu = detectCpu;
 		for (const auto& e : events)
 		{
 			bool later = false;
-			for (size_t j = i + 1; j < found.stages.size(); j++) later |= e.first == found.stages[j].name;
+			for (size_t j = i + 1; j < found.stages.size(); j++) later |= e.stage == found.stages[j].name;
 			if (later)
 			{
-				peak = e.second;
+				peak = e.peak;
+				cpu = e.cpu;
 				break;
 			}
 		}
 		const bool pts = i < 4 || s.name == "octree";  // spacing, grid, gradient, clustering: points in
-		rows.push_back({s.name, s.seconds, s.itemsIn, s.itemsOut, pts, peak});
+		rows.push_back({s.name, s.seconds, s.itemsIn, s.itemsOut, pts, peak, cpu - cpuBefore});
+		cpuBefore = cpu;
 	}
 	std::map<std::string, int> verdicts;
 	for (const auto& c : found.candidates) verdicts[c.verdict]++;
 	const std::string jsonPath = dir + "/detections.json";
 	tagmap::writeTagsJson(jsonPath, found.tags);
 	const auto t3 = Clock::now();
-	rows.push_back({"write_json", seconds(t2, t3), found.tags.size(), found.tags.size(), false, peakRssBytes()});
+	rows.push_back({"write_json", seconds(t2, t3), found.tags.size(), found.tags.size(), false, peakRssBytes(),
+					cpuSeconds() - detectCpu});
 
 	const double total = seconds(t0, t3), peak = peakRssBytes();
-	rusage ru{};
-	getrusage(RUSAGE_SELF, &ru);
-	const double cpu = ru.ru_utime.tv_sec + ru.ru_stime.tv_sec + 1e-6 * (ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+	const double cpu = cpuSeconds();
 	std::printf("\n== %zu points (%s), threads %u, load average %.2f before / %.2f after\n", map.size(),
 				rep.format.c_str(), tagmap::resolveThreads(o.threads), load0, loadAverage());
-	std::printf("%-20s %9s %12s %12s %14s %12s\n", "stage", "seconds", "in", "out", "points/s", "peak RSS MB");
+	std::printf("%-20s %9s %9s %12s %12s %14s %12s\n", "stage", "seconds", "CPU s", "in", "out", "points/s",
+				"peak RSS MB");
 	for (const Row& r : rows)
 	{
 		char rate[32] = "-";
 		if (r.points && r.seconds > 0) std::snprintf(rate, sizeof rate, "%.3g", r.in / r.seconds);
-		std::printf("%-20s %9.3f %12zu %12zu %14s %12.1f\n", r.name.c_str(), r.seconds, r.in, r.out, rate,
+		std::printf("%-20s %9.3f %9.3f %12zu %12zu %14s %12.1f\n", r.name.c_str(), r.seconds, r.cpu, r.in, r.out, rate,
 					r.peak / 1048576.0);
 	}
-	std::printf("%-20s %9.3f %12zu %12zu %14.3g %12.1f\n", "total (file->JSON)", total, map.size(), found.tags.size(),
-				map.size() / total, peak / 1048576.0);
+	std::printf("%-20s %9.3f %9.3f %12zu %12zu %14.3g %12.1f\n", "total (file->JSON)", total, cpu, map.size(),
+				found.tags.size(), map.size() / total, peak / 1048576.0);
 
 	std::printf("CPU time %.3f s (user + system, all threads); candidates:", cpu);
 	for (const auto& [verdict, count] : verdicts) std::printf(" %s %d", verdict.c_str(), count);
@@ -180,8 +198,8 @@ int measure(const Options& o, size_t n)
 				perPoint, ev.found(), truth.size(), ev.falsePositives(), missed.empty() ? "" : ", missed ids ",
 				missed.c_str());
 	// One machine-readable line for the parent's summary.
-	std::printf("SUMMARY %zu %.3f %.1f %.1f %d %zu %d %.2f\n", map.size(), total, peak / 1048576.0, perPoint,
-				ev.found(), truth.size(), ev.falsePositives(), load0);
+	std::printf("SUMMARY %zu %.3f %.1f %.1f %d %zu %d %.2f %.3f\n", map.size(), total, peak / 1048576.0, perPoint,
+				ev.found(), truth.size(), ev.falsePositives(), load0, cpu);
 	return 0;
 }
 
@@ -298,16 +316,17 @@ int main(int argc, char** argv)
 		}
 		if (!best.empty()) summaries.push_back(best);
 	}
-	std::printf("\n%12s %10s %12s %12s %14s %8s %6s %8s\n", "points", "seconds", "points/s", "peak RSS MB",
-				"B/pt over 200MB", "found", "false", "load");
+	std::printf("\n%12s %10s %10s %12s %12s %16s %8s %6s %8s\n", "points", "seconds", "CPU s", "points/s",
+				"peak RSS MB", "B/pt over 200MB", "found", "false", "load");
 	for (const auto& s : summaries)
 	{
 		size_t n = 0, truths = 0;
-		double t = 0, peak = 0, perPoint = 0, load = 0;
+		double t = 0, peak = 0, perPoint = 0, load = 0, cpu = 0;
 		int found = 0, fp = 0;
-		std::sscanf(s.c_str(), "%zu %lf %lf %lf %d %zu %d %lf", &n, &t, &peak, &perPoint, &found, &truths, &fp, &load);
-		std::printf("%12zu %10.3f %12.3g %12.1f %14.1f %5d/%-2zu %6d %8.2f\n", n, t, n / t, peak, perPoint, found, truths,
-					fp, load);
+		std::sscanf(s.c_str(), "%zu %lf %lf %lf %d %zu %d %lf %lf", &n, &t, &peak, &perPoint, &found, &truths, &fp, &load,
+					&cpu);
+		std::printf("%12zu %10.3f %10.3f %12.3g %12.1f %16.1f %5d/%-2zu %6d %8.2f\n", n, t, cpu, n / t, peak, perPoint,
+					found, truths, fp, load);
 	}
 	return failures ? 1 : 0;
 }
