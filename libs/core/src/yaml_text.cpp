@@ -18,7 +18,8 @@ namespace tagmap
 {
 namespace
 {
-/** Offset of the first byte that is not part of valid UTF-8, or npos. */
+/** Offset of the first byte that is not part of valid UTF-8 (RFC 3629: no
+ *  overlong forms, no surrogates, nothing above U+10FFFF), or npos. */
 size_t firstInvalidUtf8(const std::string& text)
 {
 	const auto* p = reinterpret_cast<const unsigned char*>(text.data());
@@ -26,9 +27,19 @@ size_t firstInvalidUtf8(const std::string& text)
 	for (size_t i = 0; i < n;)
 	{
 		const unsigned c = p[i];
-		const size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xe ? 3 : (c >> 3) == 0x1e ? 4 : 0;
-		if (len == 0 || (len == 2 && c < 0xc2) || len > n - i) return i;
-		for (size_t k = 1; k < len; k++)
+		if (c < 0x80)
+		{
+			i++;
+			continue;
+		}
+		// Length and the allowed range of the second byte, by lead byte.
+		size_t len = 0;
+		unsigned lo = 0x80, hi = 0xbf;
+		if (c >= 0xc2 && c <= 0xdf) len = 2;
+		else if (c >= 0xe0 && c <= 0xef) len = 3, lo = c == 0xe0 ? 0xa0 : 0x80, hi = c == 0xed ? 0x9f : 0xbf;
+		else if (c >= 0xf0 && c <= 0xf4) len = 4, lo = c == 0xf0 ? 0x90 : 0x80, hi = c == 0xf4 ? 0x8f : 0xbf;
+		if (len == 0 || len > n - i || p[i + 1] < lo || p[i + 1] > hi) return i;
+		for (size_t k = 2; k < len; k++)
 			if ((p[i + k] & 0xc0) != 0x80) return i;
 		i += len;
 	}
