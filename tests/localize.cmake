@@ -1,0 +1,11 @@
+# Localization (docs/LOCALIZATION.md): unit tests, single-scan relocalization
+# at 4 m, and the reduced end-to-end demo (scripts/localize-demo.sh --quick)
+# asserting the particle filter converges and tracks within 0.10 m.
+tagmap_test(test_localize
+  SOURCES unit/test_localize.cpp unit/test_localize_single_scan.cpp
+  LIBS tagmap_localize tagmap_sim tagmap_mrpt_plugin)
+
+add_test(NAME localize_e2e
+  COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/localize-demo.sh --quick --check
+          --tagmap $<TARGET_FILE:tagmap> --out ${PROJECT_BINARY_DIR}/test-artifacts/localize)
+set_tests_properties(localize_e2e PROPERTIES TIMEOUT 300)

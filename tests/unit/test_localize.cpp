@@ -1,0 +1,129 @@
+// tagmap_localize without simulation: relocalization and fusion algebra,
+// beacon ranges, trajectory scoring, and the CObservationTagPoses round trip.
+#include <gtest/gtest.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <sstream>
+
+#include "tagmap/localize/beacon_ranges.h"
+#include "tagmap/localize/tag_relocalization.h"
+#include "tagmap/localize/trajectory_errors.h"
+#include "tagmap/mrpt/beacon_id.h"
+#include "tagmap/obs/CObservationTagPoses.h"
+
+using namespace tagmap;
+using namespace tagmap::localize;
+
+namespace
+{
+Eigen::Isometry3d pose(double x, double y, double z, double yawDeg, double rollDeg = 0)
+{
+	Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+	T.linear() = (Eigen::AngleAxisd(yawDeg * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+				  Eigen::AngleAxisd(rollDeg * M_PI / 180, Eigen::Vector3d::UnitX()))
+					 .toRotationMatrix();
+	T.translation() = Eigen::Vector3d(x, y, z);
+	return T;
+}
+
+TagDetection tag(int id, const Eigen::Isometry3d& T, double stdPos = 0.003, double stdRotDeg = 0.3)
+{
+	TagDetection t;
+	t.family = "tag36h11";
+	t.id = id;
+	t.size = 0.5;
+	t.pose = T;
+	t.corners = cornersFromPose(T, t.size);
+	t.covariance.diagonal() << Eigen::Vector3d::Constant(stdPos * stdPos),
+		Eigen::Vector3d::Constant(std::pow(stdRotDeg * M_PI / 180, 2));
+	return t;
+}
+}  // namespace
+
+TEST(LocalizeRelocalization, RecoversTheSensorPoseFromOneTag)
+{
+	const Eigen::Isometry3d T_G_sensor = pose(3, -1, 0.8, 37);
+	const Eigen::Isometry3d T_G_tag = pose(6, 2, 1.2, 100, 90);
+	const TagDetection seen = tag(4, T_G_sensor.inverse() * T_G_tag);
+	const auto fix = relocalize({tag(4, T_G_tag)}, {seen});
+	ASSERT_TRUE(fix);
+	EXPECT_LT((fix->pose.matrix() - T_G_sensor.matrix()).norm(), 1e-9);
+	// Far from the tag, its rotation error moves the sensor: the position std
+	// exceeds the tag's own 3 mm.
+	EXPECT_GT(std::sqrt(fix->covariance(0, 0) + fix->covariance(1, 1)), 0.003);
+}
+
+TEST(LocalizeRelocalization, UnknownTagsGiveNoPose)
+{
+	EXPECT_FALSE(relocalize({tag(1, pose(0, 0, 0, 0))}, {tag(2, pose(1, 0, 0, 0))}));
+}
+
+TEST(LocalizeRelocalization, FusionWeighsByCovariance)
+{
+	PoseWithCovariance a, b;
+	a.pose = pose(1, 0, 0, 0);
+	b.pose = pose(1.3, 0, 0, 2);
+	a.covariance = Matrix6d::Identity() * 1e-4;
+	b.covariance = Matrix6d::Identity() * 9e-4;  // 3x the std: 1/10 of the weight
+	const auto f = fusePoses({a, b});
+	ASSERT_TRUE(f);
+	EXPECT_NEAR(f->pose.translation().x(), 1.03, 1e-9);
+	const double yawDeg = std::atan2(f->pose.linear()(1, 0), f->pose.linear()(0, 0)) * 180 / M_PI;
+	EXPECT_NEAR(yawDeg, 0.2, 1e-3);
+	EXPECT_LT(f->covariance(0, 0), a.covariance(0, 0));
+}
+
+TEST(LocalizeBeaconRanges, RangeIdAndStdFromTheTags)
+{
+	const TagDetection t = tag(3, pose(3, 4, 0, 0), 0.02);
+	const auto obs = makeBeaconRanges({t}, mrpt::poses::CPose3D(0.1, 0, 1, 0, 0, 0));
+	ASSERT_EQ(obs->sensedData.size(), 1u);
+	EXPECT_FLOAT_EQ(obs->sensedData[0].sensedDistance, 5.0f);
+	EXPECT_EQ(obs->sensedData[0].beaconID, mrpt_bridge::encodeBeaconId("tag36h11", 3));
+	EXPECT_FLOAT_EQ(obs->sensedData[0].sensorLocationOnRobot.z(), 1.0f);
+	EXPECT_NEAR(obs->stdError, 0.02, 1e-6);
+}
+
+TEST(LocalizeTrajectoryErrors, ConvergenceAndRmseAfterIt)
+{
+	Trajectory truth, est;
+	for (int k = 0; k < 10; k++)
+	{
+		truth.push_back({k * 0.1, pose(k, 0, 0, 0)});
+		est.push_back({k * 0.1, pose(k, k < 3 ? 2.0 : 0.05, 0, 0)});
+	}
+	const TrajectoryErrors e = evaluateTrajectory(est, truth);
+	EXPECT_EQ(e.matched, 10u);
+	EXPECT_EQ(e.convergedAtStep, 3);
+	EXPECT_NEAR(e.rmseTranslation, 0.05, 1e-9);
+	EXPECT_NE(errorsToJson(e).find("\"converged_at_step\": 3"), std::string::npos);
+}
+
+TEST(LocalizeTagPosesObservation, SerializationRoundTripAndText)
+{
+	obs::CObservationTagPoses o;
+	o.sensorLabel = "ouster_tags";
+	o.timestamp = mrpt::Clock::fromDouble(12.5);
+	o.sensorPose = mrpt::poses::CPose3D(0.1, 0, 1.0, 0, 0, 0);
+	o.tags = {tag(7, pose(4, 0.2, 0.1, 180, 90))};
+
+	mrpt::io::CMemoryStream buf;
+	mrpt::serialization::archiveFrom(buf) << o;
+	buf.Seek(0);
+	auto read = mrpt::serialization::archiveFrom(buf).ReadObject<obs::CObservationTagPoses>();
+	ASSERT_TRUE(read);
+	EXPECT_EQ(read->sensorLabel, o.sensorLabel);
+	EXPECT_EQ(read->timestamp, o.timestamp);
+	ASSERT_EQ(read->tags.size(), 1u);
+	EXPECT_EQ(read->tags[0].id, 7);
+	EXPECT_LT((read->tags[0].pose.matrix() - o.tags[0].pose.matrix()).norm(), 1e-9);
+	EXPECT_LT((read->tags[0].covariance - o.tags[0].covariance).norm(), 1e-15);
+	EXPECT_LT((read->tags[0].corners[2] - o.tags[0].corners[2]).norm(), 1e-9);
+	ASSERT_TRUE(read->find("tag36h11", 7));
+
+	std::ostringstream text;
+	read->getDescriptionAsText(text);
+	EXPECT_NE(text.str().find("100007"), std::string::npos);
+	EXPECT_NE(text.str().find("tag36h11:7"), std::string::npos);
+}
