@@ -130,15 +130,50 @@ const TagFamilyInfo* findFamily(const std::string& name)
 	return nullptr;
 }
 
+namespace
+{
+bool nestedAruco(const TagFamilyInfo* f) { return f && f->system == TagSystem::ArUco && f->name != "aruco_original"; }
+}  // namespace
+
 bool sameMarker(const std::string& familyA, int idA, const std::string& familyB, int idB)
 {
 	if (idA != idB) return false;
 	if (familyA == familyB) return true;
 	const TagFamilyInfo *a = findFamily(familyA), *b = findFamily(familyB);
-	const auto nested = [](const TagFamilyInfo* f) {
-		return f && f->system == TagSystem::ArUco && f->name != "aruco_original";
-	};
-	return nested(a) && nested(b) && a->borderCells == b->borderCells && idA < std::min(a->idCount, b->idCount);
+	return nestedAruco(a) && nestedAruco(b) && a->borderCells == b->borderCells && idA < std::min(a->idCount, b->idCount);
+}
+
+std::vector<std::string> searchFamilies(const std::vector<std::string>& requested)
+{
+	std::vector<std::string> out;
+	for (const auto& name : requested)
+	{
+		const TagFamilyInfo* f = findFamily(name);
+		if (!f) continue;
+		bool dominated = false;
+		for (const auto& other : requested)
+		{
+			const TagFamilyInfo* g = findFamily(other);
+			if (nestedAruco(f) && nestedAruco(g) && g->borderCells == f->borderCells && g->idCount > f->idCount)
+				dominated = true;
+		}
+		if (!dominated && std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+	}
+	return out;
+}
+
+std::string reportedFamily(const std::vector<std::string>& requested, const std::string& searched, int id)
+{
+	const TagFamilyInfo* s = findFamily(searched);
+	if (!nestedAruco(s)) return searched;
+	const TagFamilyInfo* best = nullptr;
+	for (const auto& name : requested)
+	{
+		const TagFamilyInfo* f = findFamily(name);
+		if (nestedAruco(f) && f->borderCells == s->borderCells && id < f->idCount && (!best || f->idCount < best->idCount))
+			best = f;
+	}
+	return best ? best->name : "";
 }
 
 std::string supportedFamilyList()

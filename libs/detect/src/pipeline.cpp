@@ -1,5 +1,6 @@
 #include "tagmap/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 
@@ -13,6 +14,7 @@
 #include "tagmap/parallel.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/point_spacing.h"
+#include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_pose.h"
@@ -53,14 +55,28 @@ struct MapView
 
 Pipeline::Pipeline(PipelineParams params) : params_(std::move(params)) { params_.validate(); }
 
+namespace
+{
+// The worker's own decoder, built on first use with the families asked for.
+template <typename Decoder, typename Params>
+Decoder& perWorker(std::vector<std::unique_ptr<Decoder>>& pool, std::mutex& mutex, unsigned worker,
+				   const std::vector<std::string>& families, const Params& params)
+{
+	std::lock_guard<std::mutex> lock(mutex);
+	if (pool.size() <= worker) pool.resize(worker + 1);
+	if (!pool[worker]) pool[worker] = std::make_unique<Decoder>(families.empty() ? parseFamilyList("") : families, params);
+	return *pool[worker];
+}
+}  // namespace
+
+SoftTagDecoder& Pipeline::softDecoderFor(unsigned worker) const
+{
+	return perWorker(softDecoders_, decodersMutex_, worker, params_.families, params_.softDecoder);
+}
+
 TagDecoder& Pipeline::decoderFor(unsigned worker) const
 {
-	std::lock_guard<std::mutex> lock(decodersMutex_);
-	if (decoders_.size() <= worker) decoders_.resize(worker + 1);
-	if (!decoders_[worker])
-		decoders_[worker] = std::make_unique<TagDecoder>(
-			params_.families.empty() ? parseFamilyList("") : params_.families, params_.decoder);
-	return *decoders_[worker];
+	return perWorker(decoders_, decodersMutex_, worker, params_.families, params_.decoder);
 }
 
 Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress, bool keepImages) const
@@ -95,9 +111,21 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 
 	report("clustering", 0, 1);
 	StageTimer tCluster(out, "clustering", kept.keptPoints.size());
-	const std::vector<Cluster> clusters = clusterPoints(m.xs, m.ys, m.zs, kept.keptPoints,
-														params_.clustering.toleranceSpacings * spacing,
-														params_.clustering.minPoints);
+	// Several scales: the point spacing varies across a map (near and far
+	// views, overlapping passes), and a tag scanned more sparsely than the
+	// map's median breaks into fragments at the finest tolerance. A coarser
+	// scale re-joins it; clusters that come out identical are kept once.
+	std::vector<Cluster> clusters;
+	for (double scale : params_.clustering.scales)
+		for (Cluster& c : clusterPoints(m.xs, m.ys, m.zs, kept.keptPoints,
+										scale * params_.clustering.toleranceSpacings * spacing,
+										params_.clustering.minPoints))
+		{
+			const bool seen = std::any_of(clusters.begin(), clusters.end(), [&](const Cluster& o) {
+				return o.points.size() == c.points.size() && o.points.front() == c.points.front();
+			});
+			if (!seen) clusters.push_back(std::move(c));
+		}
 	tCluster.done(clusters.size());
 	report("clustering", 1, 1);
 
@@ -148,31 +176,34 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 				continue;
 			}
 			if (keepImages) rep.image = plane.gray;
-			for (const ImageVariant& variant : makeImageVariants(plane.gray, params_.imageVariants))
-			{
-				std::vector<DecodedTag2D> decoded = decoder.decode(variant.gray);
-				for (DecodedTag2D& d : decoded)
-					for (auto& c : d.corners) c *= variant.scale;
-				if (keepImages) rep.decoded.insert(rep.decoded.end(), decoded.begin(), decoded.end());
-				for (const DecodedTag2D& d : decoded)
+			// Verifies a decode against its own bitmap in 3D; keeps it if it fits.
+			auto tryDecoded = [&](const DecodedTag2D& d) {
+				TagDetection t = solveTagPose(d, plane, params_.tagSize);
+				refitTagPlane(t, plane, m.xs, m.ys, m.zs);
+				PatternRefinementParams rp = params_.refinement;
+				rp.estimateSize = params_.tagSize <= 0;
+				if (!refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp))
 				{
-					TagDetection t = solveTagPose(d, plane, params_.tagSize);
-					refitTagPlane(t, plane, m.xs, m.ys, m.zs);
-					PatternRefinementParams rp = params_.refinement;
-					rp.estimateSize = params_.tagSize <= 0;
-					const bool fits = refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp);
-					if (fits) refitTagPlane(t, plane, m.xs, m.ys, m.zs);
-					if (!fits)
-					{
-						if (rep.verdict != "decoded") rep.verdict = "pattern_mismatch";
-						continue;
-					}
-					rep.verdict = "decoded";
-					if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
-					perCandidate[k].push_back(std::move(t));
+					if (rep.verdict != "decoded") rep.verdict = "pattern_mismatch";
+					return;
 				}
-				if (!perCandidate[k].empty()) break;  // verified: no need for other variants
-			}
+				refitTagPlane(t, plane, m.xs, m.ys, m.zs);
+				rep.verdict = "decoded";
+				if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
+				perCandidate[k].push_back(std::move(t));
+			};
+			auto tryAll = [&](std::vector<DecodedTag2D> decoded, double scale) {
+				for (DecodedTag2D& d : decoded)
+					for (auto& c : d.corners) c *= scale;
+				if (keepImages) rep.decoded.insert(rep.decoded.end(), decoded.begin(), decoded.end());
+				for (const DecodedTag2D& d : decoded) tryDecoded(d);
+				return !perCandidate[k].empty();
+			};
+			bool found = false;
+			for (const ImageVariant& variant : makeImageVariants(plane.gray, params_.imageVariants))
+				if ((found = tryAll(decoder.decode(variant.gray), variant.scale))) break;
+			// Last resort for blurred tags: correlate quads with every code.
+			if (!found) tryAll(softDecoderFor(worker).decode(plane.gray), 1.0);
 			std::lock_guard<std::mutex> lock(progressMutex);
 			report("decode", ++finished, candidates.size());
 		}

@@ -29,16 +29,36 @@ Binding bind(T& field)
 			[&field](mrpt::containers::yaml& map, const std::string& key) { map[key] = field; }};
 }
 
+// Lists (families, image variants, clustering scales) load from a YAML
+// sequence and dump as one.
+template <typename T>
+Binding bind(std::vector<T>& field)
+{
+	return {[&field](const mrpt::containers::yaml& v) {
+				if (!v.isSequence()) throw std::invalid_argument("expected a list");
+				field.clear();
+				for (const auto& e : v.asSequence()) field.push_back(e.as<T>());
+			},
+			[&field](mrpt::containers::yaml& map, const std::string& key) {
+				mrpt::containers::yaml seq = mrpt::containers::yaml::Sequence();
+				for (const auto& e : field) seq.push_back(e);
+				map[key] = seq;
+			}};
+}
+
 std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p)
 {
 	return {
 		{"",
 		 {{"tag_size", bind(p.tagSize)},
 		  {"threads", bind(p.threads)},
-		  {"gradient_radius_spacings", bind(p.gradientRadiusSpacings)}}},
+		  {"gradient_radius_spacings", bind(p.gradientRadiusSpacings)},
+		  {"image_variants", bind(p.imageVariants)}}},
 		{"gradient", {{"threshold", bind(p.gradient.threshold)}, {"min_neighbours", bind(p.gradient.minNeighbours)}}},
 		{"clustering",
-		 {{"tolerance_spacings", bind(p.clustering.toleranceSpacings)}, {"min_points", bind(p.clustering.minPoints)}}},
+		 {{"tolerance_spacings", bind(p.clustering.toleranceSpacings)},
+		  {"min_points", bind(p.clustering.minPoints)},
+		  {"scales", bind(p.clustering.scales)}}},
 		{"candidates",
 		 {{"min_tag_size", bind(p.candidates.minTagSize)},
 		  {"max_tag_size", bind(p.candidates.maxTagSize)},
@@ -59,6 +79,11 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		 {{"try_mirrored", bind(p.decoder.tryMirrored)},
 		  {"max_bits_corrected", bind(p.decoder.maxBitsCorrected)},
 		  {"min_decision_margin", bind(p.decoder.minDecisionMargin)}}},
+		{"soft_decoder",
+		 {{"enabled", bind(p.softDecoder.enabled)},
+		  {"min_correlation", bind(p.softDecoder.minCorrelation)},
+		  {"min_gap", bind(p.softDecoder.minGap)},
+		  {"max_quads", bind(p.softDecoder.maxQuads)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -73,7 +98,7 @@ void loadSection(const mrpt::containers::yaml& node, const std::string& section,
 	{
 		const std::string key = k.as<std::string>();
 		const std::string where = section.empty() ? key : section + "." + key;
-		if (section.empty() && (all.count(key) || key == "families" || key == "image_variants")) continue;
+		if (section.empty() && (all.count(key) || key == "families")) continue;
 		auto it = keys.find(key);
 		if (it == keys.end()) throw std::invalid_argument("unknown parameter '" + where + "'");
 		try
@@ -111,12 +136,6 @@ PipelineParams PipelineParams::fromYaml(const mrpt::containers::yaml& y)
 			list = f.as<std::string>();
 		p.families = list.empty() ? std::vector<std::string>{} : parseFamilyList(list);
 	}
-	if (y.has("image_variants"))
-	{
-		if (!y["image_variants"].isSequence()) throw std::invalid_argument("image_variants must be a list");
-		p.imageVariants.clear();
-		for (const auto& e : y["image_variants"].asSequence()) p.imageVariants.push_back(e.as<std::string>());
-	}
 	p.validate();
 	return p;
 }
@@ -143,9 +162,6 @@ mrpt::containers::yaml PipelineParams::toYaml() const
 	mrpt::containers::yaml fams = mrpt::containers::yaml::Sequence();
 	for (const auto& f : families) fams.push_back(f);
 	y["families"] = fams;
-	mrpt::containers::yaml variants = mrpt::containers::yaml::Sequence();
-	for (const auto& v : imageVariants) variants.push_back(v);
-	y["image_variants"] = variants;
 	for (auto& [section, keys] : all)
 	{
 		mrpt::containers::yaml sub = mrpt::containers::yaml::Map();
@@ -166,6 +182,8 @@ void PipelineParams::validate() const
 	positive(gradientRadiusSpacings, "gradient_radius_spacings");
 	positive(gradient.threshold, "gradient.threshold");
 	positive(clustering.toleranceSpacings, "clustering.tolerance_spacings");
+	if (clustering.scales.empty()) throw std::invalid_argument("clustering.scales must not be empty");
+	for (double sc : clustering.scales) positive(sc, "clustering.scales entries");
 	positive(candidates.minTagSize, "candidates.min_tag_size");
 	positive(candidates.maxTagSize, "candidates.max_tag_size");
 	if (candidates.maxTagSize < candidates.minTagSize)

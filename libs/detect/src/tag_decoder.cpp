@@ -12,15 +12,6 @@ namespace tagmap
 {
 namespace
 {
-// The largest ArUco dictionaries contain the smaller ones of the same bit
-// size as prefixes (DICT_4X4_50 ids are DICT_4X4_1000 ids 0..49), so one
-// pass per bit size with the largest requested dictionary suffices; the id
-// is then reported under the smallest requested dictionary that holds it.
-struct ArucoPass
-{
-	std::vector<const TagFamilyInfo*> dictionaries;  // same bit size, ascending id count
-};
-
 }  // namespace
 
 struct TagDecoder::Impl
@@ -28,7 +19,8 @@ struct TagDecoder::Impl
 	TagDecoderParams params;
 	apriltag_detector_t* detector = nullptr;
 	std::vector<std::shared_ptr<apriltag_family>> aprilFamilies;  // tables shared by all decoders
-	std::vector<ArucoPass> arucoPasses;
+	std::vector<std::string> requested;  // as asked, for naming nested ArUco ids
+	std::vector<std::string> arucoSearched;
 	cv::Ptr<cv::aruco::DetectorParameters> arucoParams;
 
 	void decodeOnce(const cv::Mat& img, bool mirrored, std::vector<DecodedTag2D>& out) const
@@ -54,23 +46,17 @@ struct TagDecoder::Impl
 			}
 			apriltag_detections_destroy(dets);
 		}
-		for (const auto& pass : arucoPasses)
+		for (const auto& searched : arucoSearched)
 		{
 			std::vector<std::vector<cv::Point2f>> corners;
 			std::vector<int> ids;
-			cv::aruco::detectMarkers(img, arucoDictionary(pass.dictionaries.back()->name), corners, ids, arucoParams);
+			cv::aruco::detectMarkers(img, arucoDictionary(searched), corners, ids, arucoParams);
 			for (size_t i = 0; i < ids.size(); i++)
 			{
-				const TagFamilyInfo* fam = nullptr;
-				for (const auto* f : pass.dictionaries)
-					if (ids[i] < f->idCount)
-					{
-						fam = f;
-						break;
-					}
-				if (!fam) continue;
+				const std::string family = reportedFamily(requested, searched, ids[i]);
+				if (family.empty()) continue;
 				DecodedTag2D d;
-				d.family = fam->name;
+				d.family = family;
 				d.id = ids[i];
 				d.margin = 100;
 				d.mirrored = mirrored;
@@ -85,8 +71,8 @@ struct TagDecoder::Impl
 TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParams params) : impl_(new Impl)
 {
 	impl_->params = params;
-	std::vector<const TagFamilyInfo*> aruco;
-	for (const auto& name : families)
+	impl_->requested = families;
+	for (const auto& name : searchFamilies(families))
 	{
 		const TagFamilyInfo* info = findFamily(name);
 		if (!info) continue;
@@ -106,25 +92,7 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 			apriltag_detector_add_family_bits(impl_->detector, impl_->aprilFamilies.back().get(), bits);
 		}
 		else
-			aruco.push_back(info);
-	}
-	// Group ArUco dictionaries by bit size (aruco_original stands alone).
-	for (const auto* info : aruco)
-	{
-		const bool nested = info->name != "aruco_original";
-		ArucoPass* pass = nullptr;
-		for (auto& p : impl_->arucoPasses)
-			if (nested && p.dictionaries.front()->name != "aruco_original" &&
-				p.dictionaries.front()->borderCells == info->borderCells)
-				pass = &p;
-		if (!pass)
-		{
-			impl_->arucoPasses.emplace_back();
-			pass = &impl_->arucoPasses.back();
-		}
-		pass->dictionaries.push_back(info);
-		std::sort(pass->dictionaries.begin(), pass->dictionaries.end(),
-				  [](const TagFamilyInfo* a, const TagFamilyInfo* b) { return a->idCount < b->idCount; });
+			impl_->arucoSearched.push_back(name);
 	}
 	impl_->arucoParams = cv::aruco::DetectorParameters::create();
 	impl_->arucoParams->cornerRefinementMethod = cv::aruco::CORNER_REFINE_SUBPIX;

@@ -32,6 +32,15 @@ struct TagFamilyInfo
  *  Without --family, the decoder names the smallest dictionary holding it. */
 bool sameMarker(const std::string& familyA, int idA, const std::string& familyB, int idB);
 
+/** The families a decoder has to search for `requested`: nested ArUco
+ *  dictionaries of one bit size collapse to the largest requested one. */
+std::vector<std::string> searchFamilies(const std::vector<std::string>& requested);
+
+/** The name to report for `id` found while searching `searched`: itself,
+ *  or for nested ArUco the smallest requested dictionary holding the id
+ *  ("" when no requested dictionary holds it). */
+std::string reportedFamily(const std::vector<std::string>& requested, const std::string& searched, int id);
+
 /** Every family tagmap supports, AprilTag first. */
 const std::vector<TagFamilyInfo>& supportedFamilies();
 

@@ -16,6 +16,8 @@ struct ClusteringParams
 	 *  (on a voxel grid, so up to ~1.7 x that across a voxel diagonal). */
 	double toleranceSpacings = 3.0;
 	size_t minPoints = 20;  // fewer: noise, not a tag
+	/** Tolerance multipliers tried (multi-scale clustering, see pipeline.cpp). */
+	std::vector<double> scales = {1.0, 3.0};
 };
 
 /** Oriented bounding box: axes are the PCA directions, largest first. */

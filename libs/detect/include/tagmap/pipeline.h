@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tagmap/pipeline_params.h"
+#include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_detection.h"
 
@@ -76,7 +77,9 @@ class Pipeline
 	// worker thread, made on first use and kept for the next detect().
 	mutable std::vector<std::unique_ptr<TagDecoder>> decoders_;
 	mutable std::mutex decodersMutex_;
+	mutable std::vector<std::unique_ptr<SoftTagDecoder>> softDecoders_;
 	TagDecoder& decoderFor(unsigned worker) const;
+	SoftTagDecoder& softDecoderFor(unsigned worker) const;
 };
 
 }  // namespace tagmap

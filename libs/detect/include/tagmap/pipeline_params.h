@@ -16,6 +16,7 @@
 #include "tagmap/octree_gather.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/point_spacing.h"
+#include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 
 namespace tagmap
@@ -39,6 +40,7 @@ struct PipelineParams
 	GatherParams gather;
 	IntermediatePlaneParams plane;
 	TagDecoderParams decoder;
+	SoftDecoderParams softDecoder;
 	PatternRefinementParams refinement;
 
 	/** Reads the keys present in `y` over the defaults; throws

@@ -1,0 +1,52 @@
+// Stage 5c: maximum-likelihood decoding of blurred tags. The camera
+// decoders threshold each bit cell; a tag blurred by map drift or a wide
+// beam footprint loses bits that way although its pattern is still there.
+// Here every square the ArUco contour finder sees (its rejected quads) is
+// sampled on each family's cell grid and correlated with every code of the
+// family, in all 8 corner orderings (4 rotations, seen from either side).
+// The best code is kept when it correlates well and clearly beats the
+// runner-up; the pattern check in 3D then confirms or rejects it.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "tagmap/tag_decoder.h"
+
+namespace tagmap
+{
+struct SoftDecoderParams
+{
+	bool enabled = true;
+	/** Pearson correlation of the sampled data cells (those that differ
+	 *  between codes) with the code's; chance level for the best of N codes
+	 *  in 8 orientations is about 0.6 for the largest families. */
+	double minCorrelation = 0.7;
+	double minGap = 0.15;  // over the best other code
+	int maxQuads = 8;  // largest quads tried per image
+};
+
+class SoftTagDecoder
+{
+   public:
+	SoftTagDecoder(const std::vector<std::string>& families, SoftDecoderParams params = {});
+	~SoftTagDecoder();
+	SoftTagDecoder(const SoftTagDecoder&) = delete;
+	SoftTagDecoder& operator=(const SoftTagDecoder&) = delete;
+
+	/** Tags found in an 8-bit grey image; corners as in TagDecoder. */
+	std::vector<DecodedTag2D> decode(const cv::Mat& gray8) const;
+
+   private:
+	struct FamilyCodes;
+	SoftDecoderParams params_;
+	std::vector<std::string> requested_;
+	std::vector<std::string> families_;  // searched: nested ArUco collapsed
+	mutable std::map<std::string, std::unique_ptr<FamilyCodes>> codes_;  // built on first use
+	const FamilyCodes& codesOf(const std::string& family) const;
+};
+
+}  // namespace tagmap
