@@ -1,0 +1,112 @@
+// End-to-end: simulate the project's scenes (share/scenes/) and detect their
+// tags with default parameters, scored against the simulator's ground truth
+// as the drifted map shows it (truthInMap).
+#include <gtest/gtest.h>
+
+#include "tagmap/evaluation.h"
+#include "tagmap/pipeline.h"
+#include "tagmap/sim/scene_loader.h"
+#include "tagmap/sim/simulate.h"
+
+using namespace tagmap;
+
+namespace
+{
+struct SceneRun
+{
+	sim::SimulationOutput sim;
+	Detections found;
+	Evaluation eval;
+};
+
+SceneRun run(const std::string& scene, const sim::SceneParameters& overrides = {}, double intensityScale = 1,
+			 PipelineParams params = {})
+{
+	SceneRun r;
+	sim::SimOptions opt;
+	opt.intensityScale = intensityScale;
+	r.sim = sim::simulate(sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/" + scene, overrides), opt);
+	r.found = Pipeline(params).detect(r.sim.map);
+	r.eval = evaluateDetections(r.found.tags, r.sim.truthInMap);
+	return r;
+}
+
+void expectAllFound(const SceneRun& r)
+{
+	for (const auto& e : r.eval.perTruth)
+	{
+		EXPECT_TRUE(e.found) << e.family << ":" << e.id << " missed";
+		if (e.found)
+		{
+			EXPECT_TRUE(e.vertexOrderCorrect) << e.family << ":" << e.id;
+		}
+	}
+	for (const auto& f : r.eval.falseDetections) ADD_FAILURE() << "false detection " << f.family << ":" << f.id;
+}
+}  // namespace
+
+TEST(Scenes, PresentersBothTagsIncludingTheOccludedOne)
+{
+	const SceneRun r = run("presenters.yaml");
+	EXPECT_EQ(r.eval.perTruth.size(), 2u);
+	expectAllFound(r);
+}
+
+TEST(Scenes, FamiliesEveryTag)
+{
+	const SceneRun r = run("families.yaml");
+	EXPECT_EQ(r.eval.perTruth.size(), 15u);
+	expectAllFound(r);
+}
+
+TEST(Scenes, NegativesNoFalseDetection)
+{
+	const SceneRun r = run("negatives.yaml");
+	EXPECT_TRUE(r.eval.perTruth.empty());
+	EXPECT_EQ(r.found.tags.size(), 0u);
+}
+
+TEST(Scenes, ParkingSlowPassTags)
+{
+	// Tags 1 and 4 (the slow pass, as in the paper); tag 0 (fast, swinging,
+	// 4x drift) is the open hard case and is reported, not asserted.
+	const SceneRun r = run("parking.yaml");
+	for (const auto& e : r.eval.perTruth)
+	{
+		if (e.id == 0)
+		{
+			std::printf("parking tag 0 (hard case): %s\n", e.found ? "found" : "missed");
+			continue;
+		}
+		EXPECT_TRUE(e.found) << "parking tag " << e.id;
+		if (e.found)
+		{
+			EXPECT_TRUE(e.vertexOrderCorrect);
+		}
+	}
+	EXPECT_EQ(r.eval.falsePositives(), 0);
+}
+
+TEST(Scenes, SingleStationaryScanAtFourMetres)
+{
+	const SceneRun r = run("accuracy.yaml", {{"tag_distance", 4.0}});
+	expectAllFound(r);
+	ASSERT_EQ(r.eval.found(), 1);
+	EXPECT_LT(r.eval.perTruth[0].maxCornerError, 0.005);
+}
+
+TEST(Scenes, IntensityScaleGivesIdenticalTags)
+{
+	std::vector<std::vector<TagDetection>> results;
+	for (double scale : {1.0, 255.0, 65535.0}) results.push_back(run("presenters.yaml", {}, scale).found.tags);
+	for (size_t k = 1; k < results.size(); k++)
+	{
+		ASSERT_EQ(results[k].size(), results[0].size());
+		for (size_t t = 0; t < results[0].size(); t++)
+		{
+			EXPECT_EQ(results[k][t].family, results[0][t].family);
+			EXPECT_EQ(results[k][t].id, results[0][t].id);
+			for (int c = 0; c < 4; c++) EXPECT_LT((results[k][t].corners[c] - results[0][t].corners[c]).norm(), 1e-5);
+		}
+	}
+}
