@@ -14,5 +14,6 @@ build/bin/tagmap simulate "$SCENE" --out "$OUT/sim"
 echo "== detecting tags in $OUT/sim/map.pcd"
 build/bin/tagmap detect "$OUT/sim/map.pcd" --json "$OUT/tags.json" --verbose
 echo "== compared with the ground truth"
-build/bin/tagmap compare "$OUT/tags.json" "$OUT/sim/ground_truth.json"
+build/bin/tagmap compare "$OUT/tags.json" "$OUT/sim/ground_truth.json" --in-map \
+  || echo "(not every true tag was found, see above)"
 echo "== results in $OUT/ (tags.json; the map and its ground truth in $OUT/sim/)"
