@@ -4,7 +4,6 @@
 #include <mrpt/obs/CRawlog.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 #include "cli.h"
@@ -13,6 +12,7 @@
 #include "tagmap/errors.h"
 #include "tagmap/localize/direct_localizer.h"
 #include "tagmap/localize/pf_localizer.h"
+#include "tagmap/localize/rawlog_file.h"
 #include "tagmap/localize/trajectory_errors.h"
 #include "tagmap/tags_json.h"
 
@@ -35,13 +35,6 @@ const char* kUsage =
 	"  --particles N     particles of the global (uniform) phase (default 40000)\n"
 	"  --seed N          random seed of the particle filter (default 1)\n";
 
-mrpt::obs::CRawlog loadRawlog(const std::string& path)
-{
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "no such file");
-	mrpt::obs::CRawlog log;
-	if (!log.loadFromRawLogFile(path) || log.empty()) throw InputError(path, "", "not a readable MRPT rawlog");
-	return log;
-}
 }  // namespace
 
 int runLocalize(int argc, char** argv)
@@ -76,7 +69,7 @@ int runLocalize(int argc, char** argv)
 		checkOutputWritable(a.get("--out"));
 		if (a.has("--errors")) checkOutputWritable(a.get("--errors"));
 
-		const auto steps = localize::localizationSteps(loadRawlog(a.get("--rawlog")), a.get("--rawlog"));
+		const auto steps = localize::localizationSteps(localize::loadRawlog(a.get("--rawlog")), a.get("--rawlog"));
 		localize::Trajectory estimate;
 		std::string extra = "\"method\": \"" + method + "\", \"steps\": " + std::to_string(steps.size());
 		if (method == "pf")

@@ -3,7 +3,6 @@
 #include <mrpt/obs/CRawlog.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 
 #include "cli.h"
@@ -12,6 +11,7 @@
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
 #include "tagmap/localize/observe_rawlog.h"
+#include "tagmap/localize/rawlog_file.h"
 #include "tagmap/localize/scan_tags.h"
 
 namespace tagmap::app
@@ -52,11 +52,8 @@ int runObserve(int argc, char** argv)
 		if (a.positional.size() != 2) throw cli::UsageError("expected IN.rawlog and OUT.rawlog");
 		const std::string in = a.positional[0], out = a.positional[1];
 		const PipelineParams params = observeParams(a);
-		if (!std::filesystem::is_regular_file(in)) throw InputError(in, "", "no such file");
 		checkOutputWritable(out);
-
-		mrpt::obs::CRawlog log;
-		if (!log.loadFromRawLogFile(in) || log.empty()) throw InputError(in, "", "not a readable MRPT rawlog");
+		const mrpt::obs::CRawlog log = localize::loadRawlog(in);
 		const bool quiet = a.has("--quiet");
 		localize::ObserveReport report;
 		const mrpt::obs::CRawlog observed =
@@ -66,9 +63,7 @@ int runObserve(int argc, char** argv)
 					std::fprintf(stderr, "tagmap observe: scan %zu/%zu\n", done, total);
 			});
 		if (report.scans == 0) throw InputError(in, "", "no LiDAR observation with intensity");
-		writeFileAtomicallyByName(out, [&](const std::string& tmp) {
-			if (!observed.saveToRawLogFile(tmp)) throw InputError(tmp, "", "cannot write rawlog");
-		});
+		localize::saveRawlog(out, observed);
 		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s -> %s\n", report.scans,
 					report.scansWithTags, report.tagsSeen, report.seconds, out.c_str());
 		return 0;

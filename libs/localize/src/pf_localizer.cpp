@@ -80,14 +80,14 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 						   const PfParams& params)
 {
 	if (mapTags.empty()) throw std::invalid_argument("the tag map is empty");
-	mrpt::random::getRandomGenerator().randomize(params.seed);
-
 	auto map = std::make_shared<mrpt::maps::CLandmarksMap>(mrpt_bridge::tagsToLandmarksMap(mapTags));
 	map->likelihoodOptions.beaconRangesUseObservationStd = false;
 	map->likelihoodOptions.beaconRangesStd = static_cast<float>(params.globalRangeStd);
 
 	mrpt::slam::CMonteCarloLocalization2D pdf(params.globalParticles);
 	pdf.options.metricMap = map;
+	// Seeded here, after MRPT's constructors: runs are repeatable.
+	mrpt::random::getRandomGenerator().randomize(params.seed);
 	const Bounds b = mapBounds(mapTags, params.mapMargin);
 	pdf.resetUniform(b.xmin, b.xmax, b.ymin, b.ymax, -M_PI, M_PI, static_cast<int>(params.globalParticles));
 

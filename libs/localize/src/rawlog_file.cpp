@@ -1,0 +1,61 @@
+#include "tagmap/localize/rawlog_file.h"
+
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <filesystem>
+
+#include "tagmap/atomic_file.h"
+#include "tagmap/errors.h"
+
+namespace tagmap::localize
+{
+namespace
+{
+/** The "Message:" line of an MRPT exception text, or its first line. */
+std::string oneLine(const std::string& what)
+{
+	const auto m = what.find("Message:");
+	const auto from = m == std::string::npos ? 0 : m + 8;
+	std::string s = what.substr(from, what.find('\n', from) - from);
+	s.erase(0, s.find_first_not_of(' '));
+	return s;
+}
+}  // namespace
+
+mrpt::obs::CRawlog loadRawlog(const std::string& path)
+{
+	if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "no such file");
+	mrpt::io::CFileGZInputStream in;
+	if (!in.open(path)) throw InputError(path, "", "cannot open");
+	auto archive = mrpt::serialization::archiveFrom(in);
+	mrpt::obs::CRawlog log;
+	for (size_t n = 0;; n++)
+	{
+		mrpt::serialization::CSerializable::Ptr obj;
+		try
+		{
+			obj = archive.ReadObject();
+		}
+		catch (const mrpt::serialization::CExceptionEOF&)
+		{
+			break;
+		}
+		catch (const std::exception& e)
+		{
+			throw InputError(path, "object " + std::to_string(n + 1), "not a readable MRPT rawlog (" + oneLine(e.what()) + ")");
+		}
+		log.insert(obj);
+	}
+	if (log.empty()) throw InputError(path, "", "empty rawlog");
+	return log;
+}
+
+void saveRawlog(const std::string& path, const mrpt::obs::CRawlog& log)
+{
+	writeFileAtomicallyByName(path, [&](const std::string& tmp) {
+		if (!log.saveToRawLogFile(tmp)) throw InputError(tmp, "", "cannot write rawlog");
+	});
+}
+
+}  // namespace tagmap::localize
