@@ -106,7 +106,17 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 	Eigen::Matrix3d C = S / count - mx * mx.transpose();
 	const Eigen::Vector3d c = Eigen::Vector3d(sum4(sxi), sum4(syi), sum4(szi)) / count - mx * mi;
 	C += Eigen::Matrix3d::Identity() * (1e-3 * C.trace() + 1e-12);
-	return C.ldlt().solve(c).norm();
+	// Cholesky by hand (3x3, positive definite with the ridge); Eigen's LDLT
+	// only where a pivot is not positive.
+	const double l00 = std::sqrt(C(0, 0)), l10 = C(1, 0) / l00, l20 = C(2, 0) / l00;
+	const double d11 = C(1, 1) - l10 * l10;
+	const double l11 = std::sqrt(d11), l21 = (C(2, 1) - l20 * l10) / l11;
+	const double d22 = C(2, 2) - l20 * l20 - l21 * l21;
+	if (!(C(0, 0) > 0 && d11 > 0 && d22 > 0)) return C.ldlt().solve(c).norm();
+	const double l22 = std::sqrt(d22);
+	const double y0 = c(0) / l00, y1 = (c(1) - l10 * y0) / l11, y2 = (c(2) - l20 * y0 - l21 * y1) / l22;
+	const double g2 = y2 / l22, g1 = (y1 - l21 * g2) / l11, g0 = (y0 - l10 * g1 - l20 * g2) / l00;
+	return std::sqrt(g0 * g0 + g1 * g1 + g2 * g2);
 }
 }  // namespace
 

@@ -159,8 +159,9 @@ double estimatePointSpacing(const float* xs, const float* ys, const float* zs, s
 
 	// Any cell that resolves gives the same (exact) median, so the cell only
 	// decides how many passes it takes. Start from the spacing of a 1/64
-	// subsample: about 8x the map's on surfaces, 4x in volumes; below any
-	// plausible spacing when there is no subsample to ask.
+	// subsample: up to 8x the map's on surfaces (5.8x measured on the large
+	// hall), 4x in volumes, so a quarter of it resolves in one pass; below
+	// any plausible spacing when there is no subsample to ask.
 	const double floorCell = ext.maxCoeff() * 1e-6;
 	double cell = std::cbrt(ext.prod() / static_cast<double>(n)) / 16;
 	constexpr size_t kSub = 64;
@@ -174,7 +175,7 @@ double estimatePointSpacing(const float* xs, const float* ys, const float* zs, s
 			sz.push_back(zs[i]);
 		}
 		const double sub = estimatePointSpacing(sx.data(), sy.data(), sz.data(), sx.size(), p, threads);
-		if (sub > 0) cell = sub / 6;
+		if (sub > 0) cell = sub / 4;
 	}
 	cell = std::max(cell, floorCell);
 	double median = 0, tooFine = 0, tooCoarse = 0;
