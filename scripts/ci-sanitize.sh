@@ -3,8 +3,9 @@
 # with AddressSanitizer + UndefinedBehaviorSanitizer (-DTAGMAP_SANITIZE=ON) in
 # build-asan/ and runs them there, bad-input shell tests included. Left out:
 # the MRPT GUI/app tests and the Chromium report test (external programs, not
-# our code, and far too slow under ASan), and the long-running reliability
-# tests (determinism, kill mid-run), which the regular build covers.
+# our code, and far too slow under ASan), and the long whole-pipeline runs
+# (benchmarks, end-to-end localization, determinism, kill mid-run: minutes
+# each under ASan), which the regular build covers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build-asan
@@ -13,7 +14,7 @@ TARGETS=(
 	test_tag_decoder test_pipeline tagmap
 	fuzz_pcd_replay fuzz_ply_replay fuzz_lzf_replay fuzz_scene_replay fuzz_config_replay
 )
-EXCLUDE='_NOT_BUILT|^mrpt_|report_chromium|reliability_(determinism|kill_midrun)'
+EXCLUDE='_NOT_BUILT|^mrpt_|report_chromium|^bench_|^localize_|reliability_(determinism|kill_midrun)'
 
 cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTAGMAP_SANITIZE=ON >/dev/null
 cmake --build "$B" -j"$(nproc)" --target "${TARGETS[@]}"
