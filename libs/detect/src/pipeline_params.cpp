@@ -91,12 +91,21 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 	};
 }
 
+// MRPT's as<std::string>() on a map or list throws a many-line exception;
+// the user must get one line naming the key instead.
+template <typename Node>
+std::string scalarText(const Node& n, const std::string& where)
+{
+	if (!n.isScalar()) throw std::invalid_argument("'" + where + "' must be a single value, not a map or list");
+	return n.template as<std::string>();
+}
+
 void loadSection(const mrpt::containers::yaml& node, const std::string& section, std::map<std::string, Binding>& keys,
 				 const std::map<std::string, std::map<std::string, Binding>>& all)
 {
 	for (const auto& [k, v] : node.asMap())
 	{
-		const std::string key = k.as<std::string>();
+		const std::string key = scalarText(k, section.empty() ? "a key" : "a key in " + section);
 		const std::string where = section.empty() ? key : section + "." + key;
 		if (section.empty() && (all.count(key) || key == "families")) continue;
 		auto it = keys.find(key);
@@ -131,9 +140,9 @@ PipelineParams PipelineParams::fromYaml(const mrpt::containers::yaml& y)
 		const auto& f = y["families"];
 		std::string list;
 		if (f.isSequence())
-			for (const auto& e : f.asSequence()) list += e.as<std::string>() + ",";
+			for (const auto& e : f.asSequence()) list += scalarText(e, "families: an entry") + ",";
 		else if (!f.isNullNode())
-			list = f.as<std::string>();
+			list = scalarText(f, "families");
 		p.families = list.empty() ? std::vector<std::string>{} : parseFamilyList(list);
 	}
 	p.validate();
