@@ -51,12 +51,12 @@ float sum4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 // points per step in a fixed order, so the result is the same on any
 // thread; a point outside r adds exact zeros (no branch per neighbour).
 double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, const Span* spans, int spanCount,
-					double radius, int minNeighbours)
+					double radius, int minNeighbours, double minExplained)
 {
 	const float cx = centre.x(), cy = centre.y(), cz = centre.z(), r2 = static_cast<float>(radius * radius);
 	const Float4 vcx = {cx, cx, cx, cx}, vcy = {cy, cy, cy, cy}, vcz = {cz, cz, cz, cz}, vr2 = {r2, r2, r2, r2};
 	const Float4 one = {1, 1, 1, 1};
-	Float4 sxx{}, sxy{}, sxz{}, syy{}, syz{}, szz{}, sx{}, sy{}, sz{}, sxi{}, syi{}, szi{}, si{}, inside{};
+	Float4 sxx{}, sxy{}, sxz{}, syy{}, syz{}, szz{}, sx{}, sy{}, sz{}, sxi{}, syi{}, szi{}, si{}, sii{}, inside{};
 	auto accumulate = [&](Float4 X, Float4 Y, Float4 Z, Float4 I, Float4 valid) {
 		const Float4 dx = X - vcx, dy = Y - vcy, dz = Z - vcz;
 		const Int4 near = (dx * dx + dy * dy + dz * dz) <= vr2;
@@ -75,6 +75,7 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 		syi += wy * I;
 		szi += wz * I;
 		si += w * I;
+		sii += w * I * I;
 		inside += w;
 	};
 	for (int s = 0; s < spanCount; s++)
@@ -98,7 +99,7 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 		}
 	}
 	const int count = static_cast<int>(sum4(inside));
-	if (count < minNeighbours) return 0;
+	if (count < minNeighbours) return -1;  // too sparse here to fit: the caller retries at a larger radius
 	Eigen::Matrix3d S;
 	S << sum4(sxx), sum4(sxy), sum4(sxz), sum4(sxy), sum4(syy), sum4(syz), sum4(sxz), sum4(syz), sum4(szz);
 	const Eigen::Vector3d mx = Eigen::Vector3d(sum4(sx), sum4(sy), sum4(sz)) / count;
@@ -112,22 +113,30 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 	const double d11 = C(1, 1) - l10 * l10;
 	const double l11 = std::sqrt(d11), l21 = (C(2, 1) - l20 * l10) / l11;
 	const double d22 = C(2, 2) - l20 * l20 - l21 * l21;
-	if (!(C(0, 0) > 0 && d11 > 0 && d22 > 0)) return C.ldlt().solve(c).norm();
+	if (!(C(0, 0) > 0 && d11 > 0 && d22 > 0)) return C.ldlt().solve(c).norm() * (minExplained > 0 ? 0 : 1);
 	const double l22 = std::sqrt(d22);
 	const double y0 = c(0) / l00, y1 = (c(1) - l10 * y0) / l11, y2 = (c(2) - l20 * y0 - l21 * y1) / l22;
 	const double g2 = y2 / l22, g1 = (y1 - l21 * g2) / l11, g0 = (y0 - l10 * g1 - l20 * g2) / l00;
+	// How much of the intensity variance the plane I = A^T x + b explains.
+	// An edge is explained well (about 0.6-0.75 for a step across the
+	// neighbourhood); interleaved points of different intensity (a surface
+	// merged from two viewpoints at different ranges, speckle) give a
+	// slope from noise that explains little. Scale free, like the slope test.
+	const double varI = sum4(sii) / count - mi * mi;
+	const double explained = g0 * c(0) + g1 * c(1) + g2 * c(2);
+	if (varI <= 0 || explained < minExplained * varI) return 0;
 	return std::sqrt(g0 * g0 + g1 * g1 + g2 * g2);
 }
 }  // namespace
 
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
 												  const VoxelGrid& grid, const IntensityGradientParams& p,
-												  unsigned threads)
+												  unsigned threads, double spread)
 {
 	IntensityGradientResult out;
 	const size_t n = grid.pointCount();
 	threads = resolveThreads(threads);
-	out.intensitySpread = robustIntensitySpread(is, n);
+	out.intensitySpread = spread > 0 ? spread : robustIntensitySpread(is, n);
 	if (out.intensitySpread <= 0 || n == 0) return out;
 	const double cut = p.threshold * out.intensitySpread / grid.cellSize();
 
@@ -152,7 +161,13 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 	// block). A point whose own fit would pass lies near an edge, and so
 	// does its voxel's centroid fit at a lower bar; only those voxels get
 	// the per-point fits.
-	std::vector<uint8_t> keep(n, 0);
+	enum : uint8_t
+	{
+		kDrop = 0,
+		kKeep = 1,
+		kSparse = 2
+	};
+	std::vector<uint8_t> keep(n, kDrop);
 	parallelForBlocks(grid.voxelCount(), threads, [&](size_t vb, size_t ve) {
 		VoxelGrid::NeighbourSweep sweep(grid, vb);
 		uint32_t block[27];
@@ -178,21 +193,25 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre's key then.
 			const Eigen::Vector3f probe = grid.keyOf(c) == grid.keyOfVoxel(v) ? c : mid;
 			// 1.5 r: an edge anywhere in the voxel is within reach of the centroid.
-			if (gradientNorm(probe, sorted, spans, spanCount, 1.5 * grid.cellSize(), p.minNeighbours) < 0.5 * cut)
-				continue;
+			const double coarse = gradientNorm(probe, sorted, spans, spanCount, 1.5 * grid.cellSize(), p.minNeighbours, 0.0);
+			if (coarse >= 0 && coarse < 0.5 * cut) continue;
 			for (size_t k = first; k < last; k++)
 			{
 				const Eigen::Vector3f q(sorted.x[k], sorted.y[k], sorted.z[k]);
-				keep[order[k]] = gradientNorm(q, sorted, spans, spanCount, grid.cellSize(), p.minNeighbours) >= cut;
+				const double g = gradientNorm(q, sorted, spans, spanCount, grid.cellSize(), p.minNeighbours, p.minExplained);
+				keep[order[k]] = g < 0 ? kSparse : (g >= cut ? kKeep : kDrop);
 			}
 		}
 	}, 256);
 	sorted = {};
 	size_t kept = 0;
-	for (size_t i = 0; i < n; i++) kept += keep[i];
+	for (size_t i = 0; i < n; i++) kept += keep[i] == kKeep;
 	out.keptPoints.reserve(kept);
 	for (size_t i = 0; i < n; i++)
-		if (keep[i]) out.keptPoints.push_back(static_cast<uint32_t>(i));
+	{
+		if (keep[i] == kKeep) out.keptPoints.push_back(static_cast<uint32_t>(i));
+		if (keep[i] == kSparse) out.sparsePoints.push_back(static_cast<uint32_t>(i));
+	}
 	return out;
 }
 

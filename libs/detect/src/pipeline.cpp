@@ -103,31 +103,60 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	tGrid.done(grid.voxelCount());
 	report("neighbour_index", 1, 1);
 
+	// Clusters at several tolerances: the point spacing varies across a map
+	// (near and far views, overlapping passes), and a tag scanned more
+	// sparsely than the map's median breaks into fragments at the finest
+	// tolerance. A coarser one re-joins it; identical clusters are kept once.
+	std::vector<Cluster> clusters;
+	auto addClusters = [&](const std::vector<uint32_t>& kept, double levelScale) {
+		for (double scale : params_.clustering.scales)
+			for (Cluster& c : clusterPoints(m.xs, m.ys, m.zs, kept,
+											levelScale * scale * params_.clustering.toleranceSpacings * spacing,
+											params_.clustering.minPoints))
+			{
+				const bool seen = std::any_of(clusters.begin(), clusters.end(), [&](const Cluster& o) {
+					return o.points.size() == c.points.size() && o.points.front() == c.points.front();
+				});
+				if (!seen) clusters.push_back(std::move(c));
+			}
+	};
+
 	report("intensity_gradient", 0, 1);
 	StageTimer tGradient(out, "intensity_gradient", m.n);
-	const IntensityGradientResult kept = filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads);
-	tGradient.done(kept.keptPoints.size());
+	IntensityGradientResult level = filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads);
+	tGradient.done(level.keptPoints.size());
 	report("intensity_gradient", 1, 1);
 
 	report("clustering", 0, 1);
-	StageTimer tCluster(out, "clustering", kept.keptPoints.size());
-	// Several scales: the point spacing varies across a map (near and far
-	// views, overlapping passes), and a tag scanned more sparsely than the
-	// map's median breaks into fragments at the finest tolerance. A coarser
-	// scale re-joins it; clusters that come out identical are kept once.
-	std::vector<Cluster> clusters;
-	for (double scale : params_.clustering.scales)
-		for (Cluster& c : clusterPoints(m.xs, m.ys, m.zs, kept.keptPoints,
-										scale * params_.clustering.toleranceSpacings * spacing,
-										params_.clustering.minPoints))
-		{
-			const bool seen = std::any_of(clusters.begin(), clusters.end(), [&](const Cluster& o) {
-				return o.points.size() == c.points.size() && o.points.front() == c.points.front();
-			});
-			if (!seen) clusters.push_back(std::move(c));
-		}
+	StageTimer tCluster(out, "clustering", level.keptPoints.size());
+	addClusters(level.keptPoints, 1.0);
 	tCluster.done(clusters.size());
 	report("clustering", 1, 1);
+
+	// Density levels: where the map is sparser than its median (far from the
+	// sensor, a fast pass), a point has too few neighbours within r to fit a
+	// gradient. Those points alone are run again at 3x the radius and
+	// clustered at 3x the tolerance, and so on, so the result follows the
+	// local spacing, not the map's densest part.
+	StageTimer tSparse(out, "sparse_levels", level.sparsePoints.size());
+	size_t sparseKept = 0;
+	double levelScale = 1;
+	for (int l = 1; l < params_.gradient.densityLevels && level.sparsePoints.size() >= params_.clustering.minPoints; l++)
+	{
+		levelScale *= 3;
+		const std::vector<uint32_t> subset = std::move(level.sparsePoints);
+		std::vector<float> sx(subset.size()), sy(subset.size()), sz(subset.size()), si(subset.size());
+		for (size_t k = 0; k < subset.size(); k++)
+			sx[k] = m.xs[subset[k]], sy[k] = m.ys[subset[k]], sz[k] = m.zs[subset[k]], si[k] = m.is[subset[k]];
+		const VoxelGrid subGrid(sx.data(), sy.data(), sz.data(), subset.size(), levelScale * radius, threads);
+		level = filterByIntensityGradient(sx.data(), sy.data(), sz.data(), si.data(), subGrid, params_.gradient, threads,
+										  level.intensitySpread);
+		for (auto* v : {&level.keptPoints, &level.sparsePoints})
+			for (auto& k : *v) k = subset[k];  // back to map indices (still ascending)
+		sparseKept += level.keptPoints.size();
+		addClusters(level.keptPoints, levelScale);
+	}
+	tSparse.done(sparseKept);
 
 	StageTimer tFilter(out, "candidate_filter", clusters.size());
 	CandidateFilterParams cf = params_.candidates;

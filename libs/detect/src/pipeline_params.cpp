@@ -54,7 +54,9 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"threads", bind(p.threads)},
 		  {"gradient_radius_spacings", bind(p.gradientRadiusSpacings)},
 		  {"image_variants", bind(p.imageVariants)}}},
-		{"gradient", {{"threshold", bind(p.gradient.threshold)}, {"min_neighbours", bind(p.gradient.minNeighbours)}}},
+		{"gradient", {{"threshold", bind(p.gradient.threshold)}, {"min_neighbours", bind(p.gradient.minNeighbours)},
+		  {"min_explained", bind(p.gradient.minExplained)},
+		  {"density_levels", bind(p.gradient.densityLevels)}}},
 		{"clustering",
 		 {{"tolerance_spacings", bind(p.clustering.toleranceSpacings)},
 		  {"min_points", bind(p.clustering.minPoints)},
@@ -190,6 +192,10 @@ void PipelineParams::validate() const
 		throw std::invalid_argument("tag_size must be positive, or 0 for unknown (got " + std::to_string(tagSize) + ")");
 	positive(gradientRadiusSpacings, "gradient_radius_spacings");
 	positive(gradient.threshold, "gradient.threshold");
+	if (gradient.densityLevels < 1 || gradient.densityLevels > 6)
+		throw std::invalid_argument("gradient.density_levels must be 1..6");
+	if (!(gradient.minExplained >= 0 && gradient.minExplained < 1))
+		throw std::invalid_argument("gradient.min_explained must be in [0, 1)");
 	positive(clustering.toleranceSpacings, "clustering.tolerance_spacings");
 	if (clustering.scales.empty()) throw std::invalid_argument("clustering.scales must not be empty");
 	for (double sc : clustering.scales) positive(sc, "clustering.scales entries");

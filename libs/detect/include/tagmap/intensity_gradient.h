@@ -21,18 +21,30 @@ struct IntensityGradientParams
 	double threshold = 0.3;
 	/** Fewer neighbours than this: no reliable fit, the point is dropped. */
 	int minNeighbours = 6;
+	/** A kept point's linear fit must explain at least this fraction of the
+	 *  intensity variance around it (R^2): edges do, noise and points of a
+	 *  surface merged from viewpoints at different ranges do not. */
+	double minExplained = 0.3;
+	/** Radius levels (1x, 3x, 9x ...) for points too sparse at the finer
+	 *  one; 1 disables the sparse levels. */
+	int densityLevels = 3;
 };
 
 struct IntensityGradientResult
 {
 	std::vector<uint32_t> keptPoints;  // indices into the map, ascending
 	double intensitySpread = 0;  // p95 - p5 of the map's intensities
+	/** Points with fewer than minNeighbours within r: the map is sparser
+	 *  there than its median (far from the sensor, a fast pass). The
+	 *  pipeline runs them again at a larger radius. */
+	std::vector<uint32_t> sparsePoints;
 };
 
-/** `grid` must have been built over the same points with cell = radius r. */
+/** `grid` must have been built over the same points with cell = radius r.
+ *  `spread`: the intensity spread to normalise by (0: measure it on these points). */
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
 												  const VoxelGrid& grid, const IntensityGradientParams& p,
-												  unsigned threads);
+												  unsigned threads, double spread = 0);
 
 /** Robust intensity range p95 - p5 (from a strided sample; deterministic). */
 double robustIntensitySpread(const float* is, size_t n);
