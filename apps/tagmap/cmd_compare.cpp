@@ -13,8 +13,7 @@ namespace tagmap::app
 {
 int runCompare(int argc, char** argv)
 {
-	try
-	{
+	return cli::runCommand("compare", [&] {
 		const cli::Args args = cli::parse(argc, argv, 1, {}, {"--help", "--in-map"});
 		if (args.has("--help"))
 		{
@@ -55,16 +54,6 @@ int runCompare(int argc, char** argv)
 		std::printf("found %d of %zu, missed %d, false %d\n", ev.found(), ev.perTruth.size(), ev.missed(),
 					ev.falsePositives());
 		return ok && ev.falsePositives() == 0 ? 0 : 1;
-	}
-	catch (const cli::UsageError& e)
-	{
-		std::cerr << "tagmap compare: " << e.what() << " (see tagmap compare --help)\n";
-		return 2;
-	}
-	catch (const std::exception& e)
-	{
-		std::cerr << "tagmap compare: " << e.what() << "\n";
-		return 1;
-	}
+	});
 }
 }  // namespace tagmap::app

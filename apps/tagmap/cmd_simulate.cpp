@@ -39,8 +39,7 @@ sim::SceneParameters parseParam(const std::string& s)
 
 int runSimulate(int argc, char** argv)
 {
-	try
-	{
+	return cli::runCommand("simulate", [&] {
 		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads", "--run", "--rawlog"},
 									   {"--simplemap", "--help"});
 		if (a.has("--help"))
@@ -86,21 +85,6 @@ int runSimulate(int argc, char** argv)
 					  << " pts" << (i + 1 == out.truth.size() ? ")" : "");
 		std::cout << ", " << out.seconds << " s -> " << a.get("--out") << "\n";
 		return 0;
-	}
-	catch (const cli::UsageError& e)
-	{
-		std::cerr << "tagmap simulate: " << e.what() << " (see tagmap simulate --help)\n";
-		return 2;
-	}
-	catch (const InputError& e)
-	{
-		std::cerr << "tagmap simulate: " << e.what() << "\n";
-		return 1;
-	}
-	catch (const std::exception& e)
-	{
-		std::cerr << "tagmap simulate: error: " << e.what() << "\n";
-		return 1;
-	}
+	});
 }
 }  // namespace tagmap::app
