@@ -126,22 +126,27 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 
 	FitState s;
 	Evaluation best = evaluate(s, true);
+	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
+	// logScale); steps of a small angle / a twentieth of a cell.
+	auto jacobian = [&](const FitState& at, const Eigen::VectorXd& r0, int n) {
+		const double steps[4] = {0.002, 0.05 * cell0, 0.05 * cell0, 0.002};
+		Eigen::MatrixXd J(r0.size(), n);
+		for (int j = 0; j < n; j++)
+		{
+			FitState d = at;
+			double* f[4] = {&d.theta, &d.dx, &d.dy, &d.logScale};
+			*f[j] += steps[j];
+			J.col(j) = (evaluate(d, true).residuals - r0) / steps[j];
+		}
+		return J;
+	};
 	if (p.refine)
 	{
 		const int nParams = p.estimateSize ? 4 : 3;
 		double lambda = 1e-3;
 		for (int it = 0; it < p.iterations; it++)
 		{
-			// Numeric Jacobian; steps of a tenth of a cell / a small angle.
-			const double steps[4] = {0.002, 0.05 * cell0, 0.05 * cell0, 0.002};
-			Eigen::MatrixXd J(best.residuals.size(), nParams);
-			for (int j = 0; j < nParams; j++)
-			{
-				FitState d = s;
-				double* f[4] = {&d.theta, &d.dx, &d.dy, &d.logScale};
-				*f[j] += steps[j];
-				J.col(j) = (evaluate(d, true).residuals - best.residuals) / steps[j];
-			}
+			const Eigen::MatrixXd J = jacobian(s, best.residuals, nParams);
 			Eigen::MatrixXd H = J.transpose() * J;
 			const Eigen::VectorXd g = J.transpose() * best.residuals;
 			bool improved = false;
@@ -172,15 +177,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		if (best.used > 10)
 		{
 			const double sigma2 = best.cost;
-			Eigen::MatrixXd J(best.residuals.size(), 3);
-			const double steps[3] = {0.002, 0.05 * cell0, 0.05 * cell0};
-			for (int j = 0; j < 3; j++)
-			{
-				FitState d = s;
-				double* f[3] = {&d.theta, &d.dx, &d.dy};
-				*f[j] += steps[j];
-				J.col(j) = (evaluate(d, true).residuals - best.residuals) / steps[j];
-			}
+			const Eigen::MatrixXd J = jacobian(s, best.residuals, 3);
 			const Eigen::Matrix3d cov = (J.transpose() * J).inverse() * sigma2;
 			if (cov.allFinite())
 			{
