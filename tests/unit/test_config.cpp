@@ -76,7 +76,12 @@ TEST(Config, UnknownKeyIsNamed)
 
 TEST(Config, BadValueIsNamed)
 {
-	EXPECT_EQ(loadError("clustering:\n  min_points: many\n"), "parameter 'clustering.min_points' has an invalid value");
+	EXPECT_EQ(loadError("clustering:\n  min_points: many\n"),
+			  "parameter 'clustering.min_points' has an invalid value: 'many' is not an integer");
+	// MRPT's as<double>() runs into undefined behaviour on this (fuzz_config).
+	EXPECT_EQ(loadError("tag_size: 1e999\n"), "parameter 'tag_size' has an invalid value: '1e999' is not a finite number");
+	EXPECT_EQ(loadError("clustering:\n  min_points: 1.5\n"),
+			  "parameter 'clustering.min_points' has an invalid value: '1.5' is not an integer");
 	EXPECT_NE(loadError("candidates:\n  max_aspect: 0.5\n").find("candidates.max_aspect"), std::string::npos);
 	EXPECT_NE(loadError("families: [tag99h99]\n").find("tag99h99"), std::string::npos);
 }

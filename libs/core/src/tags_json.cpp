@@ -7,6 +7,7 @@
 
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
+#include "tagmap/yaml_text.h"
 
 namespace tagmap
 {
@@ -114,22 +115,22 @@ std::vector<TagDetection> readTagsJson(const std::string& path, const std::strin
 		{
 			mrpt::containers::yaml t = seq[i];
 			TagDetection d;
-			d.family = t["family"].as<std::string>();
-			d.id = t["id"].as<int>();
+			d.family = yamlScalarAs<std::string>(t["family"]);
+			d.id = yamlScalarAs<int>(t["id"]);
 			for (int k = 0; k < 4; k++)
-				for (int j = 0; j < 3; j++) d.corners[k][j] = t["corners"](k)(j).as<double>();
+				for (int j = 0; j < 3; j++) d.corners[k][j] = yamlScalarAs<double>(t["corners"](k)(j));
 			// Corners are the one required geometry (surveyed truth often has
 			// only them); size and pose follow from them when absent.
 			d.pose = poseFromCorners(d.corners);
 			d.size = 0;
 			for (int k = 0; k < 4; k++) d.size += 0.25 * (d.corners[(k + 1) % 4] - d.corners[k]).norm();
-			if (t.has("size")) d.size = t["size"].as<double>();
+			if (t.has("size")) d.size = yamlScalarAs<double>(t["size"]);
 			if (t.has("position") && t.has("quaternion"))
 			{
 				Eigen::Vector3d p;
-				for (int j = 0; j < 3; j++) p[j] = t["position"](j).as<double>();
-				Eigen::Quaterniond q(t["quaternion"](0).as<double>(), t["quaternion"](1).as<double>(),
-									 t["quaternion"](2).as<double>(), t["quaternion"](3).as<double>());
+				for (int j = 0; j < 3; j++) p[j] = yamlScalarAs<double>(t["position"](j));
+				Eigen::Quaterniond q(yamlScalarAs<double>(t["quaternion"](0)), yamlScalarAs<double>(t["quaternion"](1)),
+									 yamlScalarAs<double>(t["quaternion"](2)), yamlScalarAs<double>(t["quaternion"](3)));
 				d.pose.linear() = q.normalized().toRotationMatrix();
 				d.pose.translation() = p;
 			}

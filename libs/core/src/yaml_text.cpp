@@ -3,6 +3,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <any>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -117,5 +122,106 @@ mrpt::containers::yaml readYamlFile(const std::string& path)
 	text << in.rdbuf();
 	return parseYamlText(text.str(), path);
 }
+
+namespace
+{
+template <typename T>
+bool printIf(const std::any& value, std::ostream& out)
+{
+	const auto* v = std::any_cast<T>(&value);
+	if (v) out << *v;
+	return v != nullptr;
+}
+}  // namespace
+
+std::string yamlScalarText(const mrpt::containers::yaml& node)
+{
+	if (!node.isScalar()) throw std::invalid_argument("expected a single value, not a map or list");
+	const auto& s = node.asScalar();
+	if (!s.has_value()) return "null";  // YAML's null, ~ or an empty value
+	if (const auto* v = std::any_cast<std::string>(&s)) return *v;
+	if (const auto* v = std::any_cast<const char*>(&s)) return *v;
+	if (const auto* v = std::any_cast<bool>(&s)) return *v ? "true" : "false";
+	// Trees built in code (PipelineParams::toYaml) store typed values.
+	std::ostringstream out;
+	out.precision(17);
+	const bool printed = printIf<double>(s, out) || printIf<float>(s, out) || printIf<int>(s, out) ||
+						 printIf<unsigned>(s, out) || printIf<long>(s, out) || printIf<unsigned long>(s, out) ||
+						 printIf<long long>(s, out) || printIf<unsigned long long>(s, out);
+	if (!printed) throw std::invalid_argument("unsupported value type");
+	return out.str();
+}
+
+namespace
+{
+[[noreturn]] void notA(const std::string& what, const std::string& text)
+{
+	throw std::invalid_argument("'" + text + "' is not " + what);
+}
+
+}  // namespace
+
+double parseFiniteNumber(const std::string& text)
+{
+	errno = 0;
+	char* end = nullptr;
+	const double v = std::strtod(text.c_str(), &end);
+	if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v) || errno == ERANGE)
+		notA("a finite number", text);
+	return v;
+}
+
+namespace
+{
+template <typename T>
+T parseInteger(const std::string& text)
+{
+	errno = 0;
+	char* end = nullptr;
+	const long long v = std::strtoll(text.c_str(), &end, 10);
+	if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) notA("an integer", text);
+	if (v < static_cast<long long>(std::numeric_limits<T>::min()) ||
+		(v > 0 && static_cast<unsigned long long>(v) > static_cast<unsigned long long>(std::numeric_limits<T>::max())))
+		notA("an integer in [" + std::to_string(std::numeric_limits<T>::min()) + ", " +
+				 std::to_string(std::numeric_limits<T>::max()) + "]",
+			 text);
+	return static_cast<T>(v);
+}
+
+bool parseBool(const std::string& text)
+{
+	static const char* yes[] = {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON", "1"};
+	static const char* no[] = {"false", "False", "FALSE", "no", "No", "NO", "off", "Off", "OFF", "0"};
+	for (const char* y : yes)
+		if (text == y) return true;
+	for (const char* n : no)
+		if (text == n) return false;
+	notA("true or false", text);
+}
+}  // namespace
+
+template <typename T>
+T yamlScalarAs(const mrpt::containers::yaml& node)
+{
+	const std::string text = yamlScalarText(node);
+	if constexpr (std::is_same_v<T, std::string>) return text;
+	else if constexpr (std::is_same_v<T, bool>) return parseBool(text);
+	else if constexpr (std::is_floating_point_v<T>)
+	{
+		const double v = parseFiniteNumber(text);
+		if (std::abs(v) > double(std::numeric_limits<T>::max())) notA("a finite number", text);
+		return static_cast<T>(v);
+	}
+	else return parseInteger<T>(text);
+}
+
+template std::string yamlScalarAs<std::string>(const mrpt::containers::yaml&);
+template bool yamlScalarAs<bool>(const mrpt::containers::yaml&);
+template float yamlScalarAs<float>(const mrpt::containers::yaml&);
+template double yamlScalarAs<double>(const mrpt::containers::yaml&);
+template int yamlScalarAs<int>(const mrpt::containers::yaml&);
+template unsigned yamlScalarAs<unsigned>(const mrpt::containers::yaml&);
+template long yamlScalarAs<long>(const mrpt::containers::yaml&);
+template unsigned long yamlScalarAs<unsigned long>(const mrpt::containers::yaml&);
 
 }  // namespace tagmap

@@ -25,7 +25,7 @@ struct Binding
 template <typename T>
 Binding bind(T& field)
 {
-	return {[&field](const mrpt::containers::yaml& v) { field = v.as<T>(); },
+	return {[&field](const mrpt::containers::yaml& v) { field = yamlScalarAs<T>(v); },
 			[&field](mrpt::containers::yaml& map, const std::string& key) { map[key] = field; }};
 }
 
@@ -37,7 +37,7 @@ Binding bind(std::vector<T>& field)
 	return {[&field](const mrpt::containers::yaml& v) {
 				if (!v.isSequence()) throw std::invalid_argument("expected a list");
 				field.clear();
-				for (const auto& e : v.asSequence()) field.push_back(e.as<T>());
+				for (const auto& e : v.asSequence()) field.push_back(yamlScalarAs<T>(e));
 			},
 			[&field](mrpt::containers::yaml& map, const std::string& key) {
 				mrpt::containers::yaml seq = mrpt::containers::yaml::Sequence();
@@ -95,11 +95,10 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 
 // MRPT's as<std::string>() on a map or list throws a many-line exception;
 // the user must get one line naming the key instead.
-template <typename Node>
-std::string scalarText(const Node& n, const std::string& where)
+std::string scalarText(const mrpt::containers::yaml& n, const std::string& where)
 {
 	if (!n.isScalar()) throw std::invalid_argument("'" + where + "' must be a single value, not a map or list");
-	return n.template as<std::string>();
+	return yamlScalarText(n);
 }
 
 void loadSection(const mrpt::containers::yaml& node, const std::string& section, std::map<std::string, Binding>& keys,
@@ -118,7 +117,7 @@ void loadSection(const mrpt::containers::yaml& node, const std::string& section,
 		}
 		catch (const std::exception& e)
 		{
-			throw std::invalid_argument("parameter '" + where + "' has an invalid value");
+			throw std::invalid_argument("parameter '" + where + "' has an invalid value: " + errorSummary(e.what()));
 		}
 	}
 }

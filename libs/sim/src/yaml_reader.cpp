@@ -4,22 +4,13 @@
 #include <cstdlib>
 
 #include "tagmap/errors.h"
+#include "tagmap/yaml_text.h"
 
 namespace tagmap::sim
 {
 namespace
 {
-std::string scalarText(const YamlReader::Node& n)
-{
-	try
-	{
-		return n.as<std::string>();
-	}
-	catch (const std::exception&)
-	{
-		return std::to_string(n.as<double>());
-	}
-}
+std::string scalarText(const YamlReader::Node& n) { return yamlScalarText(n); }
 }  // namespace
 
 YamlReader::YamlReader(const Node& node, std::string path, const std::string& file,
@@ -82,10 +73,14 @@ double YamlReader::number() const
 		if (it == params_->end()) fail("unknown parameter '" + s + "' (declare it under 'parameters:')");
 		return it->second;
 	}
-	char* end = nullptr;
-	const double v = std::strtod(s.c_str(), &end);
-	if (s.empty() || *end != '\0' || !std::isfinite(v)) fail("'" + s + "' is not a finite number");
-	return v;
+	try
+	{
+		return parseFiniteNumber(s);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		fail(e.what());
+	}
 }
 
 double YamlReader::positive(const std::string& key, double def, bool allowZero) const

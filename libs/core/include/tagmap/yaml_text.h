@@ -19,3 +19,24 @@ mrpt::containers::yaml parseYamlText(const std::string& text, const std::string&
 mrpt::containers::yaml readYamlFile(const std::string& path);
 
 }  // namespace tagmap
+
+namespace tagmap
+{
+/** The text of a YAML scalar (whatever type the tree stored it as); a map
+ *  or list -> std::invalid_argument. */
+std::string yamlScalarText(const mrpt::containers::yaml& node);
+
+/** The whole of `text` as a finite double (strtod, nothing left over, no
+ *  overflow); otherwise std::invalid_argument "'<text>' is not a finite number". */
+double parseFiniteNumber(const std::string& text);
+
+/** A YAML scalar as bool, an integer type, float/double or std::string,
+ *  parsed strictly: the whole text must be the value, numbers finite and in
+ *  the type's range; otherwise std::invalid_argument saying what is wrong.
+ *  Not MRPT's as<T>(): for a number it cannot read (e.g. "1e999") MRPT
+ *  2.5.8's yaml.h falls through to an integer path that casts DBL_MAX to
+ *  long long, which is undefined behaviour (found by fuzz_config). */
+template <typename T>
+T yamlScalarAs(const mrpt::containers::yaml& node);
+
+}  // namespace tagmap
