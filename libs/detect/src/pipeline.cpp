@@ -228,11 +228,15 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 				for (const DecodedTag2D& d : decoded) tryDecoded(d);
 				return !perCandidate[k].empty();
 			};
+			// The raw image's quads serve its ArUco decode and the soft decoder.
+			const std::vector<Quad> quads = findTagQuads(plane.gray, params_.decoder.maxQuads);
 			bool found = false;
 			for (const ImageVariant& variant : makeImageVariants(plane.gray, params_.imageVariants))
-				if ((found = tryAll(decoder.decode(variant.gray), variant.scale))) break;
+				if ((found = tryAll(decoder.decode(variant.gray, variant.gray.data == plane.gray.data ? &quads : nullptr),
+									variant.scale)))
+					break;
 			// Last resort for blurred tags: correlate quads with every code.
-			if (!found) tryAll(softDecoderFor(worker).decode(plane.gray), 1.0);
+			if (!found) tryAll(softDecoderFor(worker).decode(plane.gray, quads), 1.0);
 			std::lock_guard<std::mutex> lock(progressMutex);
 			report("decode", ++finished, candidates.size());
 		}

@@ -80,12 +80,13 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		{"decoder",
 		 {{"try_mirrored", bind(p.decoder.tryMirrored)},
 		  {"max_bits_corrected", bind(p.decoder.maxBitsCorrected)},
-		  {"min_decision_margin", bind(p.decoder.minDecisionMargin)}}},
+		  {"min_decision_margin", bind(p.decoder.minDecisionMargin)},
+		  {"max_quads", bind(p.decoder.maxQuads)},
+		  {"max_border_error_rate", bind(p.decoder.maxBorderErrorRate)}}},
 		{"soft_decoder",
 		 {{"enabled", bind(p.softDecoder.enabled)},
 		  {"min_correlation", bind(p.softDecoder.minCorrelation)},
-		  {"min_gap", bind(p.softDecoder.minGap)},
-		  {"max_quads", bind(p.softDecoder.maxQuads)}}},
+		  {"min_gap", bind(p.softDecoder.minGap)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -226,6 +227,9 @@ void PipelineParams::validate() const
 	positive(gather.slabSpacings, "gather.slab_spacings");
 	positive(plane.inlierSigmas, "plane.inlier_sigmas");
 	if (!(decoder.minDecisionMargin >= 0)) throw std::invalid_argument("decoder.min_decision_margin must be >= 0");
+	if (decoder.maxQuads < 1 || decoder.maxQuads > 1000) throw std::invalid_argument("decoder.max_quads must be 1..1000");
+	if (!(decoder.maxBorderErrorRate >= 0 && decoder.maxBorderErrorRate < 1))
+		throw std::invalid_argument("decoder.max_border_error_rate must be in [0, 1)");
 	if (!(refinement.minPatternFit >= 0 && refinement.minPatternFit <= 1))
 		throw std::invalid_argument("refinement.min_pattern_fit must be in [0, 1]");
 	if (refinement.iterations < 0 || refinement.iterations > 1000)

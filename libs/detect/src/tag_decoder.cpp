@@ -12,6 +12,35 @@ namespace tagmap
 {
 namespace
 {
+// OpenCV's default DetectorParameters::errorCorrectionRate.
+constexpr double kErrorCorrectionRate = 0.6;
+
+/** Which of the 4 rotations (of the given side) puts the identified code's
+ *  bitmap on the sampled cells: the one that disagrees on fewest cells. */
+int bestOrder(const std::string& family, int id, const std::vector<float>& sample, float threshold, bool mirrored)
+{
+	const TagBitmap bm = renderTagBitmap(family, id);
+	int best = 0, fewest = bm.cells * bm.cells + 1;
+	for (int order = mirrored ? 4 : 0; order < (mirrored ? 8 : 4); order++)
+	{
+		const std::vector<int>& perm = cellPermutation(bm.cells, order);
+		int wrong = 0;
+		for (size_t k = 0; k < perm.size(); k++)
+			wrong += (sample[static_cast<size_t>(perm[k])] > threshold) != (bm.pixels[k] != 0);
+		if (wrong < fewest) fewest = wrong, best = order;
+	}
+	return best;
+}
+
+/** Sub-pixel corners, as OpenCV's CORNER_REFINE_SUBPIX does for ArUco. */
+void refineCorners(const cv::Mat& img, Quad& corners)
+{
+	std::vector<cv::Point2f> pts;
+	for (const auto& c : corners) pts.emplace_back(static_cast<float>(c.x() - 0.5), static_cast<float>(c.y() - 0.5));
+	cv::cornerSubPix(img, pts, cv::Size(5, 5), cv::Size(-1, -1),
+					 cv::TermCriteria(cv::TermCriteria::MAX_ITER | cv::TermCriteria::EPS, 30, 0.1));
+	for (size_t k = 0; k < 4; k++) corners[k] = Eigen::Vector2d(pts[k].x + 0.5, pts[k].y + 0.5);
+}
 }  // namespace
 
 struct TagDecoder::Impl
@@ -20,51 +49,90 @@ struct TagDecoder::Impl
 	apriltag_detector_t* detector = nullptr;
 	std::vector<std::shared_ptr<apriltag_family>> aprilFamilies;  // tables shared by all decoders
 	std::vector<std::string> requested;  // as asked, for naming nested ArUco ids
-	std::vector<std::string> arucoSearched;
-	cv::Ptr<cv::aruco::DetectorParameters> arucoParams;
-
-	void decodeOnce(const cv::Mat& img, bool mirrored, std::vector<DecodedTag2D>& out) const
+	struct ArucoFamily
 	{
-		if (detector)
-		{
-			image_u8_t im{img.cols, img.rows, static_cast<int32_t>(img.step), const_cast<uint8_t*>(img.data)};
-			zarray_t* dets = apriltag_detector_detect(detector, &im);
-			for (int i = 0; i < zarray_size(dets); i++)
+		std::string name;
+		cv::Ptr<cv::aruco::Dictionary> dictionary;
+		int cells = 0, borderStart = 0, borderCells = 0;  // the rendered bitmap's grid
+	};
+	std::vector<ArucoFamily> aruco;
+
+	/** OpenCV's identify on the bits inside each quad, read as is and
+	 *  mirrored. Bits are thresholded halfway between the black border ring
+	 *  and the white quiet zone around it: both are known, so the threshold
+	 *  needs no global statistics and no intensity scale. */
+	void decodeAruco(const cv::Mat& img, const std::vector<Quad>& quads, std::vector<DecodedTag2D>& out) const
+	{
+		for (const Quad& q : quads)
+			for (const ArucoFamily& f : aruco)
 			{
-				apriltag_detection_t* det = nullptr;
-				zarray_get(dets, i, &det);
-				if (det->decision_margin < params.minDecisionMargin) continue;
-				DecodedTag2D d;
-				d.family = det->family->name;
-				d.id = det->id;
-				d.margin = det->decision_margin;
-				d.hamming = det->hamming;
-				d.mirrored = mirrored;
-				// libapriltag wraps p[] counter-clockwise from bottom-left.
-				for (int k = 0; k < 4; k++) d.corners[k] = Eigen::Vector2d(det->p[3 - k][0], det->p[3 - k][1]);
-				out.push_back(d);
+				const int m = f.dictionary->markerSize, b0 = f.borderStart, b1 = f.borderStart + f.borderCells - 1;
+				const std::vector<float> sample = sampleCells(img, q, f.cells, b0, b1 + 1);
+				if (sample.empty()) continue;
+				double ring = 0, quiet = 0;
+				int nr = 0, nq = 0;
+				for (int r = 0; r < f.cells; r++)
+					for (int c = 0; c < f.cells; c++)
+					{
+						const float v = sample[static_cast<size_t>(r * f.cells + c)];
+						const bool inside = r >= b0 && r <= b1 && c >= b0 && c <= b1;
+						if (!inside) quiet += v, nq++;
+						else if (r == b0 || r == b1 || c == b0 || c == b1) ring += v, nr++;
+					}
+				ring /= std::max(nr, 1);
+				quiet /= std::max(nq, 1);
+				if (quiet - ring < 20) continue;  // no dark square on a light ground
+				const float threshold = static_cast<float>(0.5 * (ring + quiet));
+				int borderErrors = 0;
+				for (int r = b0; r <= b1; r++)
+					for (int c = b0; c <= b1; c++)
+						if ((r == b0 || r == b1 || c == b0 || c == b1) && sample[static_cast<size_t>(r * f.cells + c)] > threshold)
+							borderErrors++;
+				if (borderErrors > params.maxBorderErrorRate * nr) continue;
+				cv::Mat bits(m, m, CV_8UC1);
+				for (int r = 0; r < m; r++)
+					for (int c = 0; c < m; c++)
+						bits.at<uint8_t>(r, c) = sample[static_cast<size_t>((r + b0 + 1) * f.cells + c + b0 + 1)] > threshold;
+				for (bool mirrored : {false, true})
+				{
+					if (mirrored && !params.tryMirrored) break;
+					cv::Mat read = bits;
+					if (mirrored) cv::flip(bits, read, 1);
+					int id = -1, rotation = 0;
+					if (!f.dictionary->identify(read, id, rotation, kErrorCorrectionRate)) continue;
+					DecodedTag2D d;
+					d.family = reportedFamily(requested, f.name, id);
+					if (d.family.empty()) continue;
+					d.id = id;
+					d.margin = 100;
+					d.mirrored = mirrored;
+					d.corners = orderedCorners(q, bestOrder(f.name, id, sample, threshold, mirrored));
+					refineCorners(img, d.corners);
+					out.push_back(d);
+				}
 			}
-			apriltag_detections_destroy(dets);
-		}
-		for (const auto& searched : arucoSearched)
+	}
+
+	void decodeAprilTags(const cv::Mat& img, bool mirrored, std::vector<DecodedTag2D>& out) const
+	{
+		image_u8_t im{img.cols, img.rows, static_cast<int32_t>(img.step), const_cast<uint8_t*>(img.data)};
+		zarray_t* dets = apriltag_detector_detect(detector, &im);
+		for (int i = 0; i < zarray_size(dets); i++)
 		{
-			std::vector<std::vector<cv::Point2f>> corners;
-			std::vector<int> ids;
-			cv::aruco::detectMarkers(img, arucoDictionary(searched), corners, ids, arucoParams);
-			for (size_t i = 0; i < ids.size(); i++)
-			{
-				const std::string family = reportedFamily(requested, searched, ids[i]);
-				if (family.empty()) continue;
-				DecodedTag2D d;
-				d.family = family;
-				d.id = ids[i];
-				d.margin = 100;
-				d.mirrored = mirrored;
-				// OpenCV puts pixel centres on integers; ours are on half-integers.
-				for (int k = 0; k < 4; k++) d.corners[k] = Eigen::Vector2d(corners[i][k].x + 0.5, corners[i][k].y + 0.5);
-				out.push_back(d);
-			}
+			apriltag_detection_t* det = nullptr;
+			zarray_get(dets, i, &det);
+			if (det->decision_margin < params.minDecisionMargin) continue;
+			DecodedTag2D d;
+			d.family = det->family->name;
+			d.id = det->id;
+			d.margin = det->decision_margin;
+			d.hamming = det->hamming;
+			d.mirrored = mirrored;
+			// libapriltag wraps p[] counter-clockwise from bottom-left.
+			for (int k = 0; k < 4; k++) d.corners[k] = Eigen::Vector2d(det->p[3 - k][0], det->p[3 - k][1]);
+			out.push_back(d);
 		}
+		apriltag_detections_destroy(dets);
 	}
 };
 
@@ -92,12 +160,11 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 			apriltag_detector_add_family_bits(impl_->detector, impl_->aprilFamilies.back().get(), bits);
 		}
 		else
-			impl_->arucoSearched.push_back(name);
+		{
+			const TagBitmap first = renderTagBitmap(name, 0);
+			impl_->aruco.push_back({name, arucoDictionary(name), first.cells, first.borderStart, first.borderCells});
+		}
 	}
-	impl_->arucoParams = cv::aruco::DetectorParameters::create();
-	impl_->arucoParams->cornerRefinementMethod = cv::aruco::CORNER_REFINE_SUBPIX;
-	impl_->arucoParams->minMarkerPerimeterRate = 0.05;  // a candidate image is mostly tag
-	impl_->arucoParams->maxErroneousBitsInBorderRate = 0.2;
 }
 
 TagDecoder::~TagDecoder()
@@ -107,24 +174,31 @@ TagDecoder::~TagDecoder()
 	apriltag_detector_destroy(impl_->detector);
 }
 
-std::vector<DecodedTag2D> TagDecoder::decode(const cv::Mat& gray8) const
+std::vector<DecodedTag2D> TagDecoder::decode(const cv::Mat& gray8, const std::vector<Quad>* quads) const
 {
 	CV_Assert(gray8.type() == CV_8UC1 && gray8.isContinuous());
 	std::vector<DecodedTag2D> out;
-	impl_->decodeOnce(gray8, false, out);
-	if (impl_->params.tryMirrored)
+	if (impl_->detector)
 	{
-		cv::Mat flipped;
-		cv::flip(gray8, flipped, 1);
-		std::vector<DecodedTag2D> mirroredFound;
-		impl_->decodeOnce(flipped, true, mirroredFound);
-		for (auto& d : mirroredFound)
+		impl_->decodeAprilTags(gray8, false, out);
+		if (impl_->params.tryMirrored)
 		{
-			for (auto& c : d.corners) c.x() = gray8.cols - c.x();
-			out.push_back(d);
+			cv::Mat flipped;
+			cv::flip(gray8, flipped, 1);
+			std::vector<DecodedTag2D> mirroredFound;
+			impl_->decodeAprilTags(flipped, true, mirroredFound);
+			for (auto& d : mirroredFound)
+			{
+				for (auto& c : d.corners) c.x() = gray8.cols - c.x();
+				out.push_back(d);
+			}
 		}
 	}
+	if (!impl_->aruco.empty())
+		impl_->decodeAruco(gray8, quads ? *quads : findTagQuads(gray8, impl_->params.maxQuads), out);
 	return out;
 }
+
+const TagDecoderParams& TagDecoder::params() const { return impl_->params; }
 
 }  // namespace tagmap

@@ -1,8 +1,8 @@
 // Stage 5c: maximum-likelihood decoding of blurred tags. The camera
 // decoders threshold each bit cell; a tag blurred by map drift or a wide
 // beam footprint loses bits that way although its pattern is still there.
-// Here every square the ArUco contour finder sees (its rejected quads) is
-// sampled on each family's cell grid and correlated with every code of the
+// Here every tag-shaped quad (findTagQuads) is sampled on each family's
+// cell grid and correlated with every code of the
 // family, in all 8 corner orderings (4 rotations, seen from either side).
 // The best code is kept when it correlates well and clearly beats the
 // runner-up; the pattern check in 3D then confirms or rejects it.
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tagmap/tag_decoder.h"
+#include "tagmap/tag_quads.h"
 
 namespace tagmap
 {
@@ -26,7 +27,6 @@ struct SoftDecoderParams
 	 *  in 8 orientations is about 0.6 for the largest families. */
 	double minCorrelation = 0.7;
 	double minGap = 0.15;  // over the best other code
-	int maxQuads = 8;  // largest quads tried per image
 };
 
 class SoftTagDecoder
@@ -37,8 +37,9 @@ class SoftTagDecoder
 	SoftTagDecoder(const SoftTagDecoder&) = delete;
 	SoftTagDecoder& operator=(const SoftTagDecoder&) = delete;
 
-	/** Tags found in an 8-bit grey image; corners as in TagDecoder. */
-	std::vector<DecodedTag2D> decode(const cv::Mat& gray8) const;
+	/** Tags among `quads` (findTagQuads) of an 8-bit grey image; corners as
+	 *  in TagDecoder. */
+	std::vector<DecodedTag2D> decode(const cv::Mat& gray8, const std::vector<Quad>& quads) const;
 
    private:
 	struct FamilyCodes;

@@ -1,7 +1,12 @@
-// Stage: decoding an intensity image with the real fiducial decoders
-// (libapriltag for AprilTag families, OpenCV aruco for ArUco dictionaries),
-// on the image as rendered and on its mirror image: the box a candidate was
-// rendered from has no preferred side, so the tag may be seen from "behind".
+// Stage 5: decoding an intensity image with the real fiducial decoders,
+// as rendered and mirrored: the box a candidate was rendered from has no
+// preferred side, so the tag may be seen from "behind".
+//  - AprilTag families: libapriltag on the image and on its mirror image.
+//  - ArUco dictionaries: OpenCV's Dictionary::identify on the bits sampled
+//    inside each tag-shaped quad (tag_quads.h), and on their mirror image.
+//    The quads are found once per image: running cv::aruco::detectMarkers
+//    per dictionary and per side repeated the same thresholding and contour
+//    search ten times and was half of the decode stage's time.
 #pragma once
 
 #include <Eigen/Core>
@@ -10,6 +15,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
+
+#include "tagmap/tag_quads.h"
 
 namespace tagmap
 {
@@ -35,6 +42,11 @@ struct TagDecoderParams
 	/** Reject AprilTag decodes below this decision margin (libapriltag's
 	 *  contrast measure; the image is contrast-normalised, so it is scale free). */
 	double minDecisionMargin = 25;
+	/** Largest tag-shaped quads tried per image (ArUco and soft decoder). */
+	int maxQuads = 8;
+	/** Border cells an ArUco decode may find white, as a fraction (OpenCV's
+	 *  maxErroneousBitsInBorderRate). */
+	double maxBorderErrorRate = 0.2;
 };
 
 class TagDecoder
@@ -47,8 +59,10 @@ class TagDecoder
 	TagDecoder(const TagDecoder&) = delete;
 	TagDecoder& operator=(const TagDecoder&) = delete;
 
-	/** All tags in an 8-bit grey image (black ink dark), raw then mirrored. */
-	std::vector<DecodedTag2D> decode(const cv::Mat& gray8) const;
+	/** All tags in an 8-bit grey image (black ink dark), raw then mirrored.
+	 *  `quads`: the image's findTagQuads() when the caller has them already. */
+	std::vector<DecodedTag2D> decode(const cv::Mat& gray8, const std::vector<Quad>* quads = nullptr) const;
+	const TagDecoderParams& params() const;
 
    private:
 	struct Impl;

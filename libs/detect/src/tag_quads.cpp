@@ -1,0 +1,173 @@
+#include "tagmap/tag_quads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <opencv2/aruco.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace tagmap
+{
+namespace
+{
+double sampleBilinear(const cv::Mat& img, double x, double y)
+{
+	// Image coordinates with pixel centres on half-integers.
+	x -= 0.5;
+	y -= 0.5;
+	if (x < 0 || y < 0 || x >= img.cols - 1 || y >= img.rows - 1) return -1;
+	const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+	const double fx = x - x0, fy = y - y0;
+	const uint8_t* a = img.ptr<uint8_t>(y0);
+	const uint8_t* b = img.ptr<uint8_t>(y0 + 1);
+	return (1 - fy) * ((1 - fx) * a[x0] + fx * a[x0 + 1]) + fy * ((1 - fx) * b[x0] + fx * b[x0 + 1]);
+}
+
+/** Outlines of dark blobs under a global threshold. The contour finder in
+ *  OpenCV's ArUco works on thin adaptive thresholds and misses a blurred
+ *  tag's border; Otsu keeps the wide black border ring as one blob whose
+ *  outline is the border square. */
+void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point2f>>& quads)
+{
+	cv::Mat dark;
+	cv::GaussianBlur(gray8, dark, cv::Size(), 1.0);
+	cv::threshold(dark, dark, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
+	std::vector<std::vector<cv::Point>> contours;
+	cv::findContours(dark, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+	const double minArea = 0.002 * static_cast<double>(gray8.total());
+	for (const auto& c : contours)
+	{
+		// Blurred outlines are ragged: simplify their convex hull, loosening
+		// the tolerance until four corners remain.
+		if (cv::contourArea(c) < minArea) continue;
+		std::vector<cv::Point> hull, poly;
+		cv::convexHull(c, hull);
+		for (double eps = 0.02; eps <= 0.12 && poly.size() != 4; eps += 0.01)
+			cv::approxPolyDP(hull, poly, eps * cv::arcLength(hull, true), true);
+		if (poly.size() != 4 || cv::contourArea(poly) < 0.8 * cv::contourArea(hull)) continue;
+		std::vector<cv::Point2f> q;
+		for (const auto& p : poly) q.emplace_back(p);
+		// Contour pixels are the blob's outermost dark pixels: their outer edge is half a pixel out.
+		const cv::Point2f centre = (q[0] + q[1] + q[2] + q[3]) * 0.25f;
+		for (auto& p : q)
+		{
+			const cv::Point2f d = p - centre;
+			p += d * (0.5f / std::max(1.0f, static_cast<float>(cv::norm(d))));
+		}
+		quads.push_back(q);
+	}
+}
+/** The same outline found twice (by both finders, or as OpenCV's accepted
+ *  and rejected candidate) decodes twice; the first one found is kept. */
+std::vector<std::vector<cv::Point2f>> withoutDuplicates(const std::vector<std::vector<cv::Point2f>>& quads)
+{
+	std::vector<std::vector<cv::Point2f>> out;
+	for (const auto& q : quads)
+	{
+		const double side = std::sqrt(std::max(cv::contourArea(q), 1.0));
+		auto same = [&](const std::vector<cv::Point2f>& o) {
+			for (const auto& p : q)
+			{
+				double nearest = 1e30;
+				for (const auto& r : o) nearest = std::min(nearest, static_cast<double>(cv::norm(p - r)));
+				if (nearest > std::max(1.5, 0.05 * side)) return false;
+			}
+			return true;
+		};
+		if (std::none_of(out.begin(), out.end(), same)) out.push_back(q);
+	}
+	return out;
+}
+}  // namespace
+
+std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads)
+{
+	// The dictionary only decides which candidates OpenCV calls accepted;
+	// both lists are quads to us, the identification happens later.
+	std::vector<std::vector<cv::Point2f>> accepted, quads;
+	std::vector<int> ids;
+	auto detParams = cv::aruco::DetectorParameters::create();
+	detParams->minMarkerPerimeterRate = 0.05;  // a candidate image is mostly tag
+	cv::aruco::detectMarkers(gray8, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), accepted, ids, detParams,
+							 quads);
+	quads.insert(quads.begin(), accepted.begin(), accepted.end());  // sub-pixel refined: preferred
+	addDarkBlobOutlines(gray8, quads);
+	quads = withoutDuplicates(quads);
+	std::stable_sort(quads.begin(), quads.end(),
+					 [](const auto& a, const auto& b) { return cv::contourArea(a) > cv::contourArea(b); });
+	if (static_cast<int>(quads.size()) > maxQuads) quads.resize(static_cast<size_t>(std::max(0, maxQuads)));
+	std::vector<Quad> out;
+	for (const auto& q : quads)
+	{
+		Quad c;
+		for (int k = 0; k < 4; k++) c[k] = Eigen::Vector2d(q[k].x + 0.5, q[k].y + 0.5);  // OpenCV -> our pixel convention
+		out.push_back(c);
+	}
+	return out;
+}
+
+Quad orderedCorners(const Quad& q, int order)
+{
+	Quad c;
+	const bool mirrored = order >= 4;
+	for (int k = 0; k < 4; k++) c[k] = q[mirrored ? (order - k + 8) % 4 : (order + k) % 4];
+	return c;
+}
+
+std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, int first, int last)
+{
+	// Homography from grid coordinates (cells) to the image.
+	const float b0 = static_cast<float>(first), b1 = static_cast<float>(last);
+	const std::vector<cv::Point2f> src = {{b0, b0}, {b1, b0}, {b1, b1}, {b0, b1}};
+	std::vector<cv::Point2f> dst;
+	for (const auto& p : q) dst.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
+	const cv::Matx33d H = cv::getPerspectiveTransform(src, dst);
+	std::vector<float> sample(static_cast<size_t>(cells * cells));
+	for (int r = 0; r < cells; r++)
+		for (int col = 0; col < cells; col++)
+		{
+			// 3 x 3 points in the cell's middle: away from the blurred edges.
+			double acc = 0;
+			int cnt = 0;
+			for (double dy : {0.3, 0.5, 0.7})
+				for (double dx : {0.3, 0.5, 0.7})
+				{
+					const cv::Vec3d p = H * cv::Vec3d(col + dx, r + dy, 1.0);
+					const double v = sampleBilinear(gray8, p[0] / p[2], p[1] / p[2]);
+					if (v < 0) continue;
+					acc += v;
+					cnt++;
+				}
+			if (cnt == 0) return {};
+			sample[static_cast<size_t>(r * cells + col)] = static_cast<float>(acc / cnt);
+		}
+	return sample;
+}
+
+const std::vector<int>& cellPermutation(int cells, int order)
+{
+	static std::mutex m;
+	static std::map<std::pair<int, int>, std::vector<int>> cache;
+	std::lock_guard<std::mutex> lock(m);
+	auto& perm = cache[{cells, order}];
+	if (!perm.empty()) return perm;
+	// Order `order` maps grid corner k to the quad corner that order 0 calls
+	// idx(k); the same symmetry of the square moves every cell centre.
+	const double n = cells;
+	const Quad square = {Eigen::Vector2d(0, 0), Eigen::Vector2d(n, 0), Eigen::Vector2d(n, n), Eigen::Vector2d(0, n)};
+	const Quad to = orderedCorners(square, order);
+	// Affine map with to[0] at (0,0), to[1] at (n,0), to[3] at (0,n).
+	const Eigen::Vector2d ex = (to[1] - to[0]) / n, ey = (to[3] - to[0]) / n;
+	perm.resize(static_cast<size_t>(cells * cells));
+	for (int r = 0; r < cells; r++)
+		for (int c = 0; c < cells; c++)
+		{
+			const Eigen::Vector2d p = to[0] + ex * (c + 0.5) + ey * (r + 0.5);
+			perm[static_cast<size_t>(r * cells + c)] =
+				static_cast<int>(std::floor(p.y())) * cells + static_cast<int>(std::floor(p.x()));
+		}
+	return perm;
+}
+
+}  // namespace tagmap
