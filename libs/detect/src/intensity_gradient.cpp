@@ -43,11 +43,44 @@ using Int4 = int32_t __attribute__((vector_size(16)));
 
 float sum4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
+struct SurfaceSlope
+{
+	double norm = 0;  // |A|
+	double explained = 0;  // variance of A^T x: the part of var(I) the slope explains
+};
+
+/** The least-squares slope A = C^-1 c (C: covariance of the neighbours'
+ *  positions, c: their covariance with intensity), solved along the
+ *  principal directions of C, leaving out those the points hardly spread
+ *  along. On a scanned surface the spread along the normal is range noise
+ *  only (a few mm against a radius of cm); an intensity slope fitted along
+ *  it is noise divided by almost nothing and passed for an edge all over
+ *  plain walls of dense terrestrial scans. A direction counts when its
+ *  spread is at least half the largest (eigenvalue ratio 1/4): both in-plane
+ *  directions of a surface, all three at a corner between surfaces. */
+SurfaceSlope surfaceSlope(const Eigen::Matrix3d& C, const Eigen::Vector3d& c)
+{
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+	es.computeDirect(C);
+	const Eigen::Vector3d lambda = es.eigenvalues();  // ascending
+	SurfaceSlope out;
+	if (!(lambda(2) > 0)) return out;
+	double norm2 = 0;
+	for (int k = 0; k < 3; k++)
+	{
+		if (lambda(k) < 0.25 * lambda(2)) continue;
+		const double proj = es.eigenvectors().col(k).dot(c);
+		norm2 += proj * proj / (lambda(k) * lambda(k));
+		out.explained += proj * proj / lambda(k);
+	}
+	out.norm = std::sqrt(norm2);
+	return out;
+}
+
 // Least-squares intensity slope at `centre` from the points within r among
 // `spans` (the 3x3x3 voxel block around the centre's voxel). Coordinates
-// are taken relative to the centre for numerical stability. The ridge term
-// keeps the fit well-posed on a plane, where the slope along the normal is
-// unobservable; it then comes out near zero. The sums are float, four
+// are taken relative to the centre for numerical stability; the slope is
+// solved by surfaceSlope(), along the surface only. The sums are float, four
 // points per step in a fixed order, so the result is the same on any
 // thread; a point outside r adds exact zeros (no branch per neighbour).
 double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, const Span* spans, int spanCount,
@@ -106,27 +139,17 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 	const double mi = sum4(si) / count;
 	Eigen::Matrix3d C = S / count - mx * mx.transpose();
 	const Eigen::Vector3d c = Eigen::Vector3d(sum4(sxi), sum4(syi), sum4(szi)) / count - mx * mi;
-	C += Eigen::Matrix3d::Identity() * (1e-3 * C.trace() + 1e-12);
-	// Cholesky by hand (3x3, positive definite with the ridge); Eigen's LDLT
-	// only where a pivot is not positive.
-	const double l00 = std::sqrt(C(0, 0)), l10 = C(1, 0) / l00, l20 = C(2, 0) / l00;
-	const double d11 = C(1, 1) - l10 * l10;
-	const double l11 = std::sqrt(d11), l21 = (C(2, 1) - l20 * l10) / l11;
-	const double d22 = C(2, 2) - l20 * l20 - l21 * l21;
-	if (!(C(0, 0) > 0 && d11 > 0 && d22 > 0)) return C.ldlt().solve(c).norm() * (minExplained > 0 ? 0 : 1);
-	const double l22 = std::sqrt(d22);
-	const double y0 = c(0) / l00, y1 = (c(1) - l10 * y0) / l11, y2 = (c(2) - l20 * y0 - l21 * y1) / l22;
-	const double g2 = y2 / l22, g1 = (y1 - l21 * g2) / l11, g0 = (y0 - l10 * g1 - l20 * g2) / l00;
+	const double varI = sum4(sii) / count - mi * mi;
+	const SurfaceSlope slope = surfaceSlope(C, c);
 	// How much of the intensity variance the plane I = A^T x + b explains.
 	// An edge is explained well (about 0.6-0.75 for a step across the
 	// neighbourhood); interleaved points of different intensity (a surface
 	// merged from two viewpoints at different ranges, speckle) give a
 	// slope from noise that explains little. Scale free, like the slope test.
-	const double varI = sum4(sii) / count - mi * mi;
-	const double explained = g0 * c(0) + g1 * c(1) + g2 * c(2);
-	if (varI <= 0 || explained < minExplained * varI) return 0;
-	return std::sqrt(g0 * g0 + g1 * g1 + g2 * g2);
+	if (varI <= 0 || slope.explained < minExplained * varI) return 0;
+	return slope.norm;
 }
+
 }  // namespace
 
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
