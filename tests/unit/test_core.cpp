@@ -104,3 +104,48 @@ TEST(TagFamily, NestedArucoDictionariesNameTheSameMarker)
 	EXPECT_FALSE(sameMarker("aruco_original", 7, "aruco_5x5_1000", 7));
 	EXPECT_FALSE(sameMarker("tag36h11", 7, "tag25h9", 7));
 }
+
+// The registry's minimum Hamming distance decides which families are read
+// only exactly (TagFamilyInfo::weak); check it against the codes themselves,
+// every pair and every rotation, on the data cells of the rendered bitmaps.
+TEST(TagFamily, MinimumHammingDistanceMatchesTheCodes)
+{
+	for (const auto& f : supportedFamilies())
+	{
+		if (f.idCount > 2200) continue;  // tagStandard52h13 and the like: too many pairs for a unit test
+		// Whole grid: the quiet zone and the border are the same in every
+		// code (distance 0), and some layouts (tagStandard, tagCircle) have
+		// data bits outside the border ring.
+		const int n = renderTagBitmap(f.name, 0).cells;
+		auto code = [&](const TagBitmap& bm, int rotation) {
+			std::vector<uint8_t> bits;
+			for (int r = 0; r < n; r++)
+				for (int c = 0; c < n; c++)
+				{
+					int rr = r, cc = c;
+					for (int k = 0; k < rotation; k++) std::tie(rr, cc) = std::make_pair(cc, n - 1 - rr);
+					bits.push_back(bm.at(rr, cc) != 0);
+				}
+			return bits;
+		};
+		std::vector<std::array<std::vector<uint8_t>, 4>> codes;
+		for (int id = 0; id < f.idCount; id++)
+		{
+			const TagBitmap bm = renderTagBitmap(f.name, id);
+			codes.push_back({code(bm, 0), code(bm, 1), code(bm, 2), code(bm, 3)});
+		}
+		auto distance = [](const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+			int d = 0;
+			for (size_t k = 0; k < a.size(); k++) d += a[k] != b[k];
+			return d;
+		};
+		int fewest = 1 << 30;
+		for (size_t i = 0; i < codes.size(); i++)
+		{
+			for (int r = 1; r < 4; r++) fewest = std::min(fewest, distance(codes[i][0], codes[i][r]));
+			for (size_t j = i + 1; j < codes.size(); j++)
+				for (int r = 0; r < 4; r++) fewest = std::min(fewest, distance(codes[i][0], codes[j][r]));
+		}
+		EXPECT_EQ(f.minHamming, fewest) << f.name;
+	}
+}

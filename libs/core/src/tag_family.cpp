@@ -30,26 +30,27 @@ struct ArucoDictName
 	int dict;
 	int idCount;
 	int dataBits;  // marker side in data bits (the border adds one on each side)
+	int minHamming;  // measured over all code pairs and rotations (test_core checks it)
 };
 
 const ArucoDictName kArucoDicts[] = {
-	{"aruco_original", cv::aruco::DICT_ARUCO_ORIGINAL, 1024, 5},
-	{"aruco_4x4_50", cv::aruco::DICT_4X4_50, 50, 4},
-	{"aruco_4x4_100", cv::aruco::DICT_4X4_100, 100, 4},
-	{"aruco_4x4_250", cv::aruco::DICT_4X4_250, 250, 4},
-	{"aruco_4x4_1000", cv::aruco::DICT_4X4_1000, 1000, 4},
-	{"aruco_5x5_50", cv::aruco::DICT_5X5_50, 50, 5},
-	{"aruco_5x5_100", cv::aruco::DICT_5X5_100, 100, 5},
-	{"aruco_5x5_250", cv::aruco::DICT_5X5_250, 250, 5},
-	{"aruco_5x5_1000", cv::aruco::DICT_5X5_1000, 1000, 5},
-	{"aruco_6x6_50", cv::aruco::DICT_6X6_50, 50, 6},
-	{"aruco_6x6_100", cv::aruco::DICT_6X6_100, 100, 6},
-	{"aruco_6x6_250", cv::aruco::DICT_6X6_250, 250, 6},
-	{"aruco_6x6_1000", cv::aruco::DICT_6X6_1000, 1000, 6},
-	{"aruco_7x7_50", cv::aruco::DICT_7X7_50, 50, 7},
-	{"aruco_7x7_100", cv::aruco::DICT_7X7_100, 100, 7},
-	{"aruco_7x7_250", cv::aruco::DICT_7X7_250, 250, 7},
-	{"aruco_7x7_1000", cv::aruco::DICT_7X7_1000, 1000, 7},
+	{"aruco_original", cv::aruco::DICT_ARUCO_ORIGINAL, 1024, 5, 0},  // some codes are their own rotation
+	{"aruco_4x4_50", cv::aruco::DICT_4X4_50, 50, 4, 4},
+	{"aruco_4x4_100", cv::aruco::DICT_4X4_100, 100, 4, 3},
+	{"aruco_4x4_250", cv::aruco::DICT_4X4_250, 250, 4, 3},
+	{"aruco_4x4_1000", cv::aruco::DICT_4X4_1000, 1000, 4, 2},
+	{"aruco_5x5_50", cv::aruco::DICT_5X5_50, 50, 5, 8},
+	{"aruco_5x5_100", cv::aruco::DICT_5X5_100, 100, 5, 7},
+	{"aruco_5x5_250", cv::aruco::DICT_5X5_250, 250, 5, 6},
+	{"aruco_5x5_1000", cv::aruco::DICT_5X5_1000, 1000, 5, 5},
+	{"aruco_6x6_50", cv::aruco::DICT_6X6_50, 50, 6, 13},
+	{"aruco_6x6_100", cv::aruco::DICT_6X6_100, 100, 6, 12},
+	{"aruco_6x6_250", cv::aruco::DICT_6X6_250, 250, 6, 11},
+	{"aruco_6x6_1000", cv::aruco::DICT_6X6_1000, 1000, 6, 9},
+	{"aruco_7x7_50", cv::aruco::DICT_7X7_50, 50, 7, 19},
+	{"aruco_7x7_100", cv::aruco::DICT_7X7_100, 100, 7, 18},
+	{"aruco_7x7_250", cv::aruco::DICT_7X7_250, 250, 7, 17},
+	{"aruco_7x7_1000", cv::aruco::DICT_7X7_1000, 1000, 7, 14},
 };
 
 std::vector<TagFamilyInfo> buildRegistry()
@@ -58,11 +59,11 @@ std::vector<TagFamilyInfo> buildRegistry()
 	for (const auto& name : aprilTagFamilyNames())
 	{
 		AprilTagFamilyPtr fam = createAprilTagFamily(name);
-		out.push_back({name, TagSystem::AprilTag, static_cast<int>(fam->ncodes),
-					   fam->width_at_border});
+		out.push_back({name, TagSystem::AprilTag, static_cast<int>(fam->ncodes), fam->width_at_border,
+					   static_cast<int>(fam->h)});
 	}
 	for (const auto& d : kArucoDicts)
-		out.push_back({d.name, TagSystem::ArUco, d.idCount, d.dataBits + 2});
+		out.push_back({d.name, TagSystem::ArUco, d.idCount, d.dataBits + 2, d.minHamming});
 	return out;
 }
 

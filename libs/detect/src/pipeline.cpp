@@ -26,6 +26,11 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
+/** How far a decoded square's edge may be from --tag-size: corners on a
+ *  blurred image are a pixel or two off, a code read into a pattern twice
+ *  or half the size is no tag. */
+constexpr double kGivenSizeTolerance = 0.3;
+
 class StageTimer
 {
    public:
@@ -207,6 +212,17 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 			if (keepImages) rep.image = plane.gray;
 			// Verifies a decode against its own bitmap in 3D; keeps it if it fits.
 			auto tryDecoded = [&](const DecodedTag2D& d) {
+				// A decode the size of a few points (a code read into text or
+				// a corner of a bigger pattern) is no tag of the sizes asked for.
+				const double measured = measuredTagSize(d, plane);
+				const bool sizeFits = params_.tagSize > 0
+										  ? std::abs(measured / params_.tagSize - 1) <= kGivenSizeTolerance
+										  : measured >= cf.minTagSize && measured <= cf.maxTagSize;
+				if (!sizeFits)
+				{
+					if (rep.verdict != "decoded") rep.verdict = "size_mismatch";
+					return;
+				}
 				TagDetection t = solveTagPose(d, plane, params_.tagSize);
 				refitTagPlane(t, plane, m.xs, m.ys, m.zs);
 				PatternRefinementParams rp = params_.refinement;

@@ -34,8 +34,12 @@ void normalise(std::vector<float>& v, size_t begin, size_t n)
 }  // namespace
 
 SoftTagDecoder::SoftTagDecoder(const std::vector<std::string>& families, SoftDecoderParams params)
-	: params_(params), requested_(families), families_(searchFamilies(families))
+	: params_(params), requested_(families)
 {
+	// A maximum-likelihood decoder always finds a nearest code; only codes
+	// far apart make "nearest" mean "this one" (TagFamilyInfo::weak).
+	for (const auto& name : searchFamilies(families))
+		if (!findFamily(name)->weak()) families_.push_back(name);
 }
 
 SoftTagDecoder::~SoftTagDecoder() = default;

@@ -54,6 +54,7 @@ struct TagDecoder::Impl
 		std::string name;
 		cv::Ptr<cv::aruco::Dictionary> dictionary;
 		int cells = 0, borderStart = 0, borderCells = 0;  // the rendered bitmap's grid
+		double errorCorrectionRate = 0;  // 0 for weak families: exact codes only
 	};
 	std::vector<ArucoFamily> aruco;
 
@@ -99,7 +100,7 @@ struct TagDecoder::Impl
 					cv::Mat read = bits;
 					if (mirrored) cv::flip(bits, read, 1);
 					int id = -1, rotation = 0;
-					if (!f.dictionary->identify(read, id, rotation, kErrorCorrectionRate)) continue;
+					if (!f.dictionary->identify(read, id, rotation, f.errorCorrectionRate)) continue;
 					DecodedTag2D d;
 					d.family = reportedFamily(requested, f.name, id);
 					if (d.family.empty()) continue;
@@ -155,14 +156,17 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 				impl_->detector->refine_edges = 1;
 				impl_->detector->decode_sharpening = 0.25;
 			}
-			const int bits = info->idCount > 10000 ? std::min(1, params.maxBitsCorrected) : params.maxBitsCorrected;
+			const int bits = info->weak()			 ? 0
+							 : info->idCount > 10000 ? std::min(1, params.maxBitsCorrected)
+													 : params.maxBitsCorrected;
 			impl_->aprilFamilies.push_back(sharedAprilTagFamily(name, bits));
 			apriltag_detector_add_family_bits(impl_->detector, impl_->aprilFamilies.back().get(), bits);
 		}
 		else
 		{
 			const TagBitmap first = renderTagBitmap(name, 0);
-			impl_->aruco.push_back({name, arucoDictionary(name), first.cells, first.borderStart, first.borderCells});
+			impl_->aruco.push_back({name, arucoDictionary(name), first.cells, first.borderStart, first.borderCells,
+									info->weak() ? 0.0 : kErrorCorrectionRate});
 		}
 	}
 }

@@ -16,6 +16,13 @@ Eigen::Matrix<double, 6, 6> tagFrameCovarianceToMap(const Eigen::Matrix3d& R, co
 	return C;
 }
 
+double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane)
+{
+	double side = 0;
+	for (int k = 0; k < 4; k++) side += (decoded.corners[(k + 1) % 4] - decoded.corners[k]).norm() / 4;
+	return side * plane.frame.pixel;
+}
+
 TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, double knownSize)
 {
 	TagDetection t;
@@ -36,9 +43,7 @@ TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, 
 	t.pose.linear().col(1) = n.cross(x);
 	t.pose.linear().col(2) = n;
 
-	double measured = 0;
-	for (int k = 0; k < 4; k++) measured += (t.corners[(k + 1) % 4] - t.corners[k]).norm() / 4;
-	t.size = knownSize > 0 ? knownSize : measured;
+	t.size = knownSize > 0 ? knownSize : measuredTagSize(decoded, plane);
 	t.corners = cornersFromPose(t.pose, t.size);
 	t.pointsUsed = static_cast<int>(plane.inliers.size());
 

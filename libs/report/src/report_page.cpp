@@ -158,6 +158,7 @@ std::string verdictMeaning(const std::string& verdict)
 		{"not_flat", "box too thick for a printed tag (candidates.max_flatness)"},
 		{"not_planar", "the gathered points do not fit one plane"},
 		{"no_decode", "no decoder read a tag of the requested families on the image"},
+		{"size_mismatch", "decoded, but the decoded square is not a tag size asked for (--tag-size, candidates.min/max_tag_size)"},
 		{"pattern_mismatch", "decoded, but the points disagree with the bitmap (refinement.min_pattern_fit)"},
 		{"candidate", "passed the filter, not processed"},
 	};

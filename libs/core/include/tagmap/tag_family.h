@@ -24,6 +24,14 @@ struct TagFamilyInfo
 	/** Edge of the black border square, in bits (cells). The tag size `s`
 	 *  is this edge in metres, so one cell is s / borderCells. */
 	int borderCells = 0;
+	/** Fewest bits in which two codes differ, any rotation considered. */
+	int minHamming = 0;
+	/** Codes this close (tag16h5, aruco_original, 4x4 and the larger 5x5
+	 *  ArUco dictionaries) are easily imitated by posters, text and
+	 *  shadows: they are read only when every bit is right, and never by
+	 *  the soft (maximum-likelihood) decoder, which always finds a nearest
+	 *  code. */
+	bool weak() const { return minHamming < 7; }
 };
 
 /** True when the two readings name the same printed marker: the same family

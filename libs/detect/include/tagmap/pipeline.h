@@ -39,8 +39,9 @@ struct CandidateReport
 	size_t clusterPoints = 0;
 	size_t gatheredPoints = 0;
 	/** "candidate" (passed the filter), "size", "squareness", "not_flat"
-	 *  (rejected by the filter), "not_planar", "no_decode",
-	 *  "pattern_mismatch" or "decoded". */
+	 *  (rejected by the filter), "not_planar", "no_decode", "size_mismatch"
+	 *  (the decoded square is not a tag size asked for), "pattern_mismatch"
+	 *  or "decoded". */
 	std::string verdict;
 	// Filled only with Pipeline::detect(..., keepImages = true), for reports:
 	cv::Mat image;  // the intermediate-plane intensity image

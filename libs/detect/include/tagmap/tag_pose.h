@@ -9,6 +9,9 @@
 
 namespace tagmap
 {
+/** The border square's mean edge in metres, from the decoded corners. */
+double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane);
+
 /** `knownSize` > 0 forces the model size; otherwise it is measured from
  *  the corners. The tag's z axis is the plane normal, oriented by the
  *  corner order (z = x_tag cross y_tag), so mirrored reads come out right. */
