@@ -80,6 +80,22 @@ bool buildQuickDecode(apriltag_family_t* fam, int maxHamming)
 }
 }  // namespace
 
+int affordableBitsCorrected(const std::string& name, int wanted)
+{
+	const AprilTagFamilyPtr fam = createAprilTagFamily(name);
+	const uint64_t codes = fam->ncodes, bits = fam->nbits;
+	int b = 0;
+	uint64_t entries = codes, perCode = 1;
+	for (int next = 1; next <= wanted; next++)
+	{
+		perCode = perCode * (bits - next + 1) / next;  // C(bits, next)
+		entries += codes * perCode;
+		if (entries > kDecodeTableEntryBudget) break;
+		b = next;
+	}
+	return b;
+}
+
 std::shared_ptr<apriltag_family> sharedAprilTagFamily(const std::string& name, int bitsCorrected)
 {
 	static std::mutex mutex;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "tagmap/apriltag_families.h"
 #include "tagmap/tag_family.h"
@@ -46,7 +47,12 @@ SoftTagDecoder::~SoftTagDecoder() = default;
 
 const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& family) const
 {
-	auto& slot = codes_[family];
+	// One copy per process, whatever the number of decoders (threads): the
+	// largest family's table is 13 MB.
+	static std::mutex mutex;
+	static std::map<std::string, std::unique_ptr<FamilyCodes>> cache;
+	std::lock_guard<std::mutex> lock(mutex);
+	auto& slot = cache[family];
 	if (slot) return *slot;
 	slot = std::make_unique<FamilyCodes>();
 	FamilyCodes& fc = *slot;

@@ -156,9 +156,7 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 				impl_->detector->refine_edges = 1;
 				impl_->detector->decode_sharpening = 0.25;
 			}
-			const int bits = info->weak()			 ? 0
-							 : info->idCount > 10000 ? std::min(1, params.maxBitsCorrected)
-													 : params.maxBitsCorrected;
+			const int bits = info->weak() ? 0 : affordableBitsCorrected(name, params.maxBitsCorrected);
 			impl_->aprilFamilies.push_back(sharedAprilTagFamily(name, bits));
 			apriltag_detector_add_family_bits(impl_->detector, impl_->aprilFamilies.back().get(), bits);
 		}

@@ -29,6 +29,17 @@ AprilTagFamilyPtr createAprilTagFamily(const std::string& name);
  *  detector: zarray_clear(detector->tag_families). */
 std::shared_ptr<apriltag_family> sharedAprilTagFamily(const std::string& name, int bitsCorrected);
 
+/** Decode-table entries one family may take (16 bytes each at load 1/2:
+ *  32 MB). tag36h11 with 2 corrected bits fits; the families with tens of
+ *  thousands of codes would take 100-170 MB each at 1 or 2 bits, so they
+ *  are read exactly by libapriltag and corrected by the soft decoder, which
+ *  needs no table: their codes are 12-13 bits apart. */
+constexpr unsigned long long kDecodeTableEntryBudget = 1'000'000;
+
+/** The most bits, up to `wanted`, whose decode table for family `name`
+ *  stays within kDecodeTableEntryBudget entries. */
+int affordableBitsCorrected(const std::string& name, int wanted);
+
 /** OpenCV dictionary for an "aruco_*" family name. */
 cv::Ptr<cv::aruco::Dictionary> arucoDictionary(const std::string& name);
 

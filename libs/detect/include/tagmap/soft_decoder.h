@@ -46,7 +46,6 @@ class SoftTagDecoder
 	SoftDecoderParams params_;
 	std::vector<std::string> requested_;
 	std::vector<std::string> families_;  // searched: nested ArUco collapsed
-	mutable std::map<std::string, std::unique_ptr<FamilyCodes>> codes_;  // built on first use
 	const FamilyCodes& codesOf(const std::string& family) const;
 };
 

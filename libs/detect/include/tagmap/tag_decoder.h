@@ -36,8 +36,9 @@ struct DecodedTag2D
 struct TagDecoderParams
 {
 	bool tryMirrored = true;
-	/** Bits corrected per AprilTag family. Families with tens of thousands
-	 *  of codes get 1: their 2-bit decode tables take gigabytes. */
+	/** Bits an AprilTag decode may correct. Fewer where the family's decode
+	 *  table would not fit its budget (affordableBitsCorrected), none for
+	 *  weak families (TagFamilyInfo::weak). */
 	int maxBitsCorrected = 2;
 	/** Reject AprilTag decodes below this decision margin (libapriltag's
 	 *  contrast measure; the image is contrast-normalised, so it is scale free). */
