@@ -90,7 +90,23 @@ int generate(const Options& o, size_t n)
 	opt.targetPoints = n;
 	const tagmap::sim::SimulationOutput out = tagmap::sim::simulate(tagmap::sim::loadScene(o.scene), opt);
 	tagmap::sim::writeSimulationOutputs(dir, out, {false, opt.seed});
+	std::filesystem::copy_file(o.scene, dir + "/scene.yaml", std::filesystem::copy_options::overwrite_existing);
 	return 0;
+}
+
+std::string fileText(const std::string& path)
+{
+	std::ifstream in(path, std::ios::binary);
+	return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// A cached map is reused only if it was made from the same scene text: an
+// edited scene must not be benchmarked on a stale map.
+bool cachedMapIsCurrent(const Options& o, size_t n)
+{
+	const std::string dir = mapDir(o, n);
+	return std::filesystem::exists(dir + "/map.pcd") && std::filesystem::exists(dir + "/ground_truth.json") &&
+		   std::filesystem::exists(dir + "/scene.yaml") && fileText(dir + "/scene.yaml") == fileText(o.scene);
 }
 
 struct Row
@@ -288,7 +304,7 @@ int main(int argc, char** argv)
 	for (size_t n : o.sizes)
 	{
 		bool ok = true;
-		if (!std::filesystem::exists(mapDir(o, n) + "/map.pcd") || !std::filesystem::exists(mapDir(o, n) + "/ground_truth.json"))
+		if (!cachedMapIsCurrent(o, n))
 		{
 			auto args = common;
 			args.insert(args.end(), {"--child-generate", std::to_string(n)});

@@ -1,5 +1,6 @@
 #include "tagmap/candidate_filter.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tagmap
@@ -16,6 +17,26 @@ std::string rejectCandidate(const OrientedBox& box, double band, double noise, c
 	if (w <= 0 || l / w > p.maxAspect) return "squareness";
 	if (h > p.maxFlatness * w + 2 * noise) return "not_flat";
 	return "";
+}
+
+std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p)
+{
+	std::vector<OrientedBox> out;
+	const double l = box.extent.x(), w = box.extent.y();
+	if (!(w > 0) || l > p.splitAspect * w) return out;
+	OrientedBox window = box;
+	window.extent.x() = w;
+	if (!rejectCandidate(window, band, noise, p).empty()) return out;
+	// Half-overlapping windows from one end to the other, the last one
+	// flush with the far end.
+	const int steps = static_cast<int>(std::ceil((l - w) / (0.5 * w)));
+	for (int k = 0; k <= steps; k++)
+	{
+		const double offset = std::min(-0.5 * (l - w) + k * 0.5 * w, 0.5 * (l - w));
+		window.center = box.center + box.axes.col(0) * offset;
+		out.push_back(window);
+	}
+	return out;
 }
 
 }  // namespace tagmap

@@ -166,7 +166,13 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	StageTimer tFilter(out, "candidate_filter", clusters.size());
 	CandidateFilterParams cf = params_.candidates;
 	if (params_.tagSize > 0) cf.tagSize = params_.tagSize;
-	std::vector<size_t> candidates;
+	// A candidate: the box to gather around, and the report it fills in.
+	struct Candidate
+	{
+		size_t report;
+		OrientedBox box;
+	};
+	std::vector<Candidate> candidates;
 	for (size_t c = 0; c < clusters.size(); c++)
 	{
 		const std::string why = rejectCandidate(clusters[c].box, radius, 2 * spacing, cf);
@@ -175,8 +181,20 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		rep.extent = clusters[c].box.extent;
 		rep.clusterPoints = clusters[c].points.size();
 		rep.verdict = why.empty() ? "candidate" : why;
-		out.candidates.push_back(std::move(rep));
-		if (why.empty()) candidates.push_back(c);
+		out.candidates.push_back(rep);
+		if (why.empty()) candidates.push_back({out.candidates.size() - 1, clusters[c].box});
+		if (why != "squareness") continue;
+		// Too long for a tag: maybe a tag clustered together with an edge
+		// beside it (a pillar's corner, a shelf); its square windows are
+		// candidates of their own.
+		for (const OrientedBox& w : squareWindows(clusters[c].box, radius, 2 * spacing, cf))
+		{
+			rep.center = w.center;
+			rep.extent = w.extent;
+			rep.verdict = "candidate";
+			out.candidates.push_back(rep);
+			candidates.push_back({out.candidates.size() - 1, w});
+		}
 	}
 	tFilter.done(candidates.size());
 
@@ -197,12 +215,12 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		const TagDecoder& decoder = decoderFor(worker);
 		for (size_t k = b; k < e; k++)
 		{
-			const Cluster& cl = clusters[candidates[k]];
-			CandidateReport& rep = out.candidates[candidates[k]];
-			const std::vector<uint32_t> pts = gatherer.gather(cl.box, spacing, m.xs, m.ys, m.zs);
+			const OrientedBox& box = candidates[k].box;
+			CandidateReport& rep = out.candidates[candidates[k].report];
+			const std::vector<uint32_t> pts = gatherer.gather(box, spacing, m.xs, m.ys, m.zs);
 			rep.gatheredPoints = pts.size();
 			const PlaneImage plane =
-				renderIntermediatePlane(m.xs, m.ys, m.zs, m.is, pts, cl.box, spacing, params_.plane);
+				renderIntermediatePlane(m.xs, m.ys, m.zs, m.is, pts, box, spacing, params_.plane);
 			rep.verdict = "no_decode";
 			if (plane.gray.empty())
 			{

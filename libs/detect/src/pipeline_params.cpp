@@ -67,7 +67,8 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"max_aspect", bind(p.candidates.maxAspect)},
 		  {"max_oversize", bind(p.candidates.maxOversize)},
 		  {"shortfall", bind(p.candidates.shortfall)},
-		  {"max_flatness", bind(p.candidates.maxFlatness)}}},
+		  {"max_flatness", bind(p.candidates.maxFlatness)},
+		  {"split_aspect", bind(p.candidates.splitAspect)}}},
 		{"gather",
 		 {{"enlarge", bind(p.gather.enlarge)},
 		  {"slab_spacings", bind(p.gather.slabSpacings)},
@@ -224,6 +225,8 @@ void PipelineParams::validate() const
 	if (!(candidates.shortfall >= 0 && candidates.shortfall < 1))
 		throw std::invalid_argument("candidates.shortfall must be in [0, 1)");
 	positive(candidates.maxFlatness, "candidates.max_flatness");
+	if (!(candidates.splitAspect >= 0 && candidates.splitAspect <= 100))
+		throw std::invalid_argument("candidates.split_aspect must be in [0, 100] (0: off)");
 	positive(gather.slabSpacings, "gather.slab_spacings");
 	positive(plane.inlierSigmas, "plane.inlier_sigmas");
 	if (!(decoder.minDecisionMargin >= 0)) throw std::invalid_argument("decoder.min_decision_margin must be >= 0");

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "tagmap/clustering.h"
 
@@ -27,11 +28,20 @@ struct CandidateFilterParams
 	double maxOversize = 2.0;
 	/** Flatness: box height at most this fraction of its width (plus noise). */
 	double maxFlatness = 0.35;
+	/** Boxes rejected by squareness but at most this elongated are tried
+	 *  again as square windows along their length (squareWindows). */
+	double splitAspect = 4.0;
 };
 
 /** "" when the box may hold a tag, else the reason: "size", "squareness" or
  *  "not_flat". `band` is how far the kept edge points reach beyond the tag
  *  border (the gradient radius), `noise` the expected thickness of a plane. */
 std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
+
+/** Square boxes of `box`'s width, half-overlapping along its length, for a
+ *  box too elongated for a tag (at most splitAspect): a tag clustered
+ *  together with an edge beside it (a pillar's corner, a shelf) lies in one
+ *  of them. Empty when the width itself could hold no tag. */
+std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
 
 }  // namespace tagmap

@@ -1,0 +1,122 @@
+// One small synthetic input per pipeline stage (the end-to-end behaviour is
+// in test_pipeline.cpp and tests/e2e/).
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "tagmap/candidate_filter.h"
+#include "tagmap/intensity_gradient.h"
+#include "tagmap/tag_family.h"
+#include "tagmap/tag_quads.h"
+
+using namespace tagmap;
+
+namespace
+{
+// A 1 m x 1 m patch of the plane z = 0 on a 1 cm grid with `rangeNoise`
+// along its normal; intensity 0.2 on the left half, `right` on the other,
+// plus Gaussian noise.
+struct Patch
+{
+	std::vector<float> x, y, z, i;
+};
+
+Patch makePatch(double rangeNoise, double right, double intensityNoise)
+{
+	Patch p;
+	std::mt19937 rng(3);
+	std::normal_distribution<double> n01(0, 1);
+	for (int r = 0; r < 100; r++)
+		for (int c = 0; c < 100; c++)
+		{
+			p.x.push_back(0.01f * c);
+			p.y.push_back(0.01f * r);
+			p.z.push_back(static_cast<float>(rangeNoise * n01(rng)));
+			p.i.push_back(static_cast<float>((c < 50 ? 0.2 : right) + intensityNoise * n01(rng)));
+		}
+	return p;
+}
+
+IntensityGradientResult gradientOf(const Patch& p)
+{
+	const VoxelGrid grid(p.x.data(), p.y.data(), p.z.data(), p.x.size(), 0.025, 1);
+	// The spread is the map's; a plain patch has none, so give a typical one.
+	return filterByIntensityGradient(p.x.data(), p.y.data(), p.z.data(), p.i.data(), grid, {}, 1, 0.2);
+}
+}  // namespace
+
+TEST(IntensityGradient, KeepsAStepEdgeAndOnlyIt)
+{
+	const auto kept = gradientOf(makePatch(0.002, 0.6, 0.01)).keptPoints;
+	ASSERT_FALSE(kept.empty());
+	for (uint32_t k : kept) EXPECT_LE(std::abs(int(k % 100) - 49.5), 4.0) << "kept point in column " << k % 100;
+}
+
+// Range noise along the normal (mm) against a cm radius: a slope fitted
+// along the normal is noise over almost nothing and must not count.
+TEST(IntensityGradient, RangeNoiseOnAPlainWallIsNoEdge)
+{
+	const auto kept = gradientOf(makePatch(0.004, 0.2, 0.03)).keptPoints;
+	EXPECT_LT(kept.size(), 10u);
+}
+
+TEST(CandidateFilter, PaperCriteria)
+{
+	CandidateFilterParams p;
+	p.tagSize = 0.2;
+	OrientedBox box;
+	box.extent = {0.22, 0.2, 0.005};
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "");
+	box.extent = {0.05, 0.05, 0.001};
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "size");
+	box.extent = {0.36, 0.2, 0.005};
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "squareness");
+	box.extent = {0.22, 0.2, 0.15};
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "not_flat");
+}
+
+TEST(CandidateFilter, ElongatedBoxIsTriedAsSquareWindows)
+{
+	CandidateFilterParams p;
+	p.tagSize = 0.2;
+	OrientedBox box;
+	box.center = {1, 2, 3};
+	box.extent = {0.6, 0.2, 0.005};  // a tag with an edge beside it
+	const auto windows = squareWindows(box, 0.01, 0.002, p);
+	ASSERT_EQ(windows.size(), 5u);  // every 0.1 m from one end to the other
+	EXPECT_NEAR(windows.front().center.x(), 0.8, 1e-9);
+	EXPECT_NEAR(windows.back().center.x(), 1.2, 1e-9);
+	for (const auto& w : windows) EXPECT_EQ(rejectCandidate(w, 0.01, 0.002, p), "");
+	box.extent = {1.0, 0.2, 0.005};  // beyond split_aspect: a line, not a tag
+	EXPECT_TRUE(squareWindows(box, 0.01, 0.002, p).empty());
+	box.extent = {0.3, 0.05, 0.001};  // too narrow for any tag
+	EXPECT_TRUE(squareWindows(box, 0.01, 0.002, p).empty());
+}
+
+TEST(TagQuads, FindsTheBorderSquareAndPermutationsMatchReordering)
+{
+	const TagBitmap bm = renderTagBitmap("tag36h11", 3);
+	const int px = 10, pad = 20, n = bm.cells * px + 2 * pad;
+	cv::Mat img(n, n, CV_8UC1, cv::Scalar(255));
+	for (int r = 0; r < bm.cells; r++)
+		for (int c = 0; c < bm.cells; c++) img(cv::Rect(pad + c * px, pad + r * px, px, px)).setTo(bm.at(r, c));
+	const std::vector<Quad> quads = findTagQuads(img, 8);
+	ASSERT_FALSE(quads.empty());
+	// The largest quad is the black border square.
+	const double b0 = pad + bm.borderStart * px, b1 = b0 + bm.borderCells * px;
+	for (const auto& corner : quads.front())
+		EXPECT_LT(std::min({(corner - Eigen::Vector2d(b0, b0)).norm(), (corner - Eigen::Vector2d(b1, b0)).norm(),
+							(corner - Eigen::Vector2d(b1, b1)).norm(), (corner - Eigen::Vector2d(b0, b1)).norm()}),
+				  1.5);
+	// Sampling once and permuting equals sampling with reordered corners.
+	const int first = bm.borderStart, last = bm.borderStart + bm.borderCells;
+	const std::vector<float> base = sampleCells(img, quads.front(), bm.cells, first, last);
+	ASSERT_FALSE(base.empty());
+	for (int order = 0; order < 8; order++)
+	{
+		const std::vector<float> direct = sampleCells(img, orderedCorners(quads.front(), order), bm.cells, first, last);
+		const std::vector<int>& perm = cellPermutation(bm.cells, order);
+		for (size_t k = 0; k < direct.size(); k++) EXPECT_NEAR(direct[k], base[perm[k]], 1.0) << "order " << order;
+	}
+}
