@@ -70,7 +70,15 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 {
 	const TagBitmap bm = renderTagBitmap(t.family, t.id);
 	const double cell0 = t.size / bm.borderCells;
-	PatternModel model(bm, 0.6 * plane.localSpacing / cell0);
+	// The points' own footprint blurs the pattern by about 0.6 spacings;
+	// a map merged from drifting or badly deskewed views blurs it more
+	// (cells smeared over a neighbour). The model takes the blur that fits
+	// the points best at the decoded pose, so a blurred tag is judged
+	// against a blurred bitmap, not a sharp one.
+	const double footprint = 0.6 * plane.localSpacing / cell0;
+	std::vector<PatternModel> models;
+	for (double blur : {footprint, std::max(footprint, 0.35), std::max(footprint, 0.7)})
+		if (models.empty() || blur > 0) models.emplace_back(bm, blur);
 
 	// Tag-plane coordinates of the inliers in the initial tag frame.
 	const Eigen::Isometry3d T0 = t.pose;
@@ -87,6 +95,8 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	if (q.size() < 20) return false;
 
 	// Residuals with the intensity gain and offset solved in closed form.
+	const PatternModel* model = &models.front();
+	const PatternModel* chosen = model;
 	auto evaluate = [&](const FitState& s, bool wantResiduals) {
 		Evaluation e;
 		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
@@ -98,7 +108,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 			const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
 			const double xr = c * x + sn * y, yr = -sn * x + c * y;
 			double v;
-			if (!model.sample(xr / cell, yr / cell, v)) continue;
+			if (!model->sample(xr / cell, yr / cell, v)) continue;
 			m[k] = v;
 			sm += v;
 			sI += I[k];
@@ -125,7 +135,14 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	};
 
 	FitState s;
-	Evaluation best = evaluate(s, true);
+	Evaluation best;
+	for (const PatternModel& candidate : models)
+	{
+		model = &candidate;
+		const Evaluation e = evaluate(s, true);
+		if (best.used == 0 || e.correlation > best.correlation) best = e, chosen = &candidate;
+	}
+	model = chosen;
 	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
 	// logScale); steps of a small angle / a twentieth of a cell.
 	auto jacobian = [&](const FitState& at, const Eigen::VectorXd& r0, int n) {

@@ -154,6 +154,7 @@ std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std
 			out.push_back(d);
 		}
 	}
+	dropRepeatedReads(out);
 	return out;
 }
 

@@ -2,6 +2,8 @@
 
 #include <apriltag/apriltag.h>
 
+#include <algorithm>
+
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -198,7 +200,25 @@ std::vector<DecodedTag2D> TagDecoder::decode(const cv::Mat& gray8, const std::ve
 	}
 	if (!impl_->aruco.empty())
 		impl_->decodeAruco(gray8, quads ? *quads : findTagQuads(gray8, impl_->params.maxQuads), out);
+	dropRepeatedReads(out);
 	return out;
+}
+
+void dropRepeatedReads(std::vector<DecodedTag2D>& reads)
+{
+	std::vector<DecodedTag2D> kept;
+	for (const DecodedTag2D& d : reads)
+	{
+		const double side = (d.corners[1] - d.corners[0]).norm();
+		const bool repeated = std::any_of(kept.begin(), kept.end(), [&](const DecodedTag2D& k) {
+			if (k.family != d.family || k.id != d.id || k.mirrored != d.mirrored) return false;
+			for (int c = 0; c < 4; c++)
+				if ((k.corners[c] - d.corners[c]).norm() > 0.2 * side) return false;
+			return true;
+		});
+		if (!repeated) kept.push_back(d);
+	}
+	reads = std::move(kept);
 }
 
 const TagDecoderParams& TagDecoder::params() const { return impl_->params; }

@@ -24,23 +24,101 @@ double sampleBilinear(const cv::Mat& img, double x, double y)
 	return (1 - fy) * ((1 - fx) * a[x0] + fx * a[x0 + 1]) + fy * ((1 - fx) * b[x0] + fx * b[x0 + 1]);
 }
 
+/** Mean of the image along a square's outline just outside minus just
+ *  inside it: a tag's border square is dark inside a light quiet zone. */
+double borderContrast(const cv::Mat& img, double cx, double cy, double half, double angle)
+{
+	const double d = 0.12 * half;  // about half a cell
+	double sum = 0;
+	int n = 0;
+	for (int side = 0; side < 4; side++)
+	{
+		// Outward normal of this side, and the direction along it.
+		const double a = angle + side * M_PI / 2;
+		const double nx = std::cos(a), ny = std::sin(a), tx = -ny, ty = nx;
+		for (int k = -6; k <= 6; k++)
+		{
+			const double t = half * 0.85 * k / 6.0;
+			const double px = cx + nx * half + tx * t, py = cy + ny * half + ty * t;
+			const double out = sampleBilinear(img, px + nx * d, py + ny * d);
+			const double in = sampleBilinear(img, px - nx * d, py - ny * d);
+			if (out < 0 || in < 0) continue;
+			sum += out - in;
+			n++;
+		}
+	}
+	return n > 20 ? sum / n : -1e9;
+}
+
+/** The square (centre, half side, angle) with the strongest dark-inside
+ *  contrast along its outline, by coordinate search from `seed` with
+ *  shrinking steps. Blur moves a border's thresholded outline but not the
+ *  place where light turns dark fastest. */
+std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& img, const cv::RotatedRect& seed)
+{
+	cv::Mat smooth;
+	cv::GaussianBlur(img, smooth, cv::Size(), 1.0);
+	double x[4] = {seed.center.x + 0.5, seed.center.y + 0.5, 0.25 * (seed.size.width + seed.size.height),
+				   seed.angle * M_PI / 180};
+	double best = borderContrast(smooth, x[0], x[1], x[2], x[3]);
+	for (double step = 0.1; step > 0.01; step *= 0.5)
+	{
+		const double steps[4] = {step * x[2], step * x[2], 0.5 * step * x[2], 0.5 * step};
+		for (bool improved = true; improved;)
+		{
+			improved = false;
+			for (int j = 0; j < 4; j++)
+				for (double sign : {-1.0, 1.0})
+				{
+					double y[4] = {x[0], x[1], x[2], x[3]};
+					y[j] += sign * steps[j];
+					const double v = borderContrast(smooth, y[0], y[1], y[2], y[3]);
+					if (y[2] > 2 && v > best) best = v, std::copy(y, y + 4, x), improved = true;
+				}
+		}
+	}
+	std::vector<cv::Point2f> q;
+	for (int k = 0; k < 4; k++)
+	{
+		// Corner k: half a side out along two neighbouring normals. Back to
+		// OpenCV's pixel convention like the other quads.
+		const double a = x[3] + k * M_PI / 2, b = a + M_PI / 2;
+		q.emplace_back(static_cast<float>(x[0] + x[2] * (std::cos(a) + std::cos(b)) - 0.5),
+					   static_cast<float>(x[1] + x[2] * (std::sin(a) + std::sin(b)) - 0.5));
+	}
+	return q;
+}
+
 /** Outlines of dark blobs under a global threshold. The contour finder in
  *  OpenCV's ArUco works on thin adaptive thresholds and misses a blurred
  *  tag's border; Otsu keeps the wide black border ring as one blob whose
  *  outline is the border square. */
 void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point2f>>& quads)
 {
-	cv::Mat dark;
-	cv::GaussianBlur(gray8, dark, cv::Size(), 1.0);
-	cv::threshold(dark, dark, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
+	// Two smoothings: a light one keeps small tags' corners, a heavier one
+	// (about two point spacings: a pixel is 0.6 of one) joins a noisy or
+	// sparsely scanned border ring that the light one leaves in fragments.
 	std::vector<std::vector<cv::Point>> contours;
-	cv::findContours(dark, contours, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+	for (double sigma : {1.0, 3.0})
+	{
+		cv::Mat dark;
+		cv::GaussianBlur(gray8, dark, cv::Size(), sigma);
+		cv::threshold(dark, dark, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
+		std::vector<std::vector<cv::Point>> found;
+		cv::findContours(dark, found, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
+		contours.insert(contours.end(), found.begin(), found.end());
+	}
 	const double minArea = 0.002 * static_cast<double>(gray8.total());
 	for (const auto& c : contours)
 	{
 		// Blurred outlines are ragged: simplify their convex hull, loosening
 		// the tolerance until four corners remain.
 		if (cv::contourArea(c) < minArea) continue;
+		// A blob too ragged for four corners may still be most of a
+		// blurred tag: the square its edges fit best is a quad too.
+		const cv::RotatedRect box = cv::minAreaRect(c);
+		if (box.size.width < 2 * box.size.height && box.size.height < 2 * box.size.width)
+			quads.push_back(fitBorderSquare(gray8, box));
 		std::vector<cv::Point> hull, poly;
 		cv::convexHull(c, hull);
 		for (double eps = 0.02; eps <= 0.12 && poly.size() != 4; eps += 0.01)

@@ -16,7 +16,7 @@ struct PatternRefinementParams
 {
 	bool refine = true;  // false: keep the decoder's corners, only verify
 	/** Reject a decode whose points correlate less than this with its bitmap. */
-	double minPatternFit = 0.7;
+	double minPatternFit = 0.6;
 	int iterations = 12;
 	/** Let the size float too (when --tag-size is not given). */
 	bool estimateSize = true;

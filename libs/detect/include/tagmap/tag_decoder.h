@@ -50,6 +50,10 @@ struct TagDecoderParams
 	double maxBorderErrorRate = 0.2;
 };
 
+/** Removes reads of the same tag (family, id, side) from nearly the same
+ *  square, found through two quads of one outline: the first is kept. */
+void dropRepeatedReads(std::vector<DecodedTag2D>& reads);
+
 class TagDecoder
 {
    public:
