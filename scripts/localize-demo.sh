@@ -32,9 +32,8 @@ mkdir -p "$out"
 run() { echo "+ ${*#$here/}" >&2; "$@"; }
 
 run "$tagmap" simulate "$scene" --run survey --out "$out/survey" --threads $threads
-# The site config: see tests/localize/site_detect.yaml for why the threshold is raised.
 run "$tagmap" detect "$out/survey/map.pcd" --json "$out/tags.json" --family tag36h11 \
-  --config "$here/tests/localize/site_detect.yaml" --landmarks "$out/tags_landmarks.gz" \
+  --landmarks "$out/tags_landmarks.gz" \
   --ini "$out/tags.ini" --threads $threads --quiet
 run "$tagmap" compare "$out/tags.json" "$out/survey/ground_truth.json" || true
 

@@ -83,11 +83,9 @@ TEST(LocalizeSingleScan, LivoxThreeTenthsSecondAt4m)
 	EXPECT_LT(r.rotationErrorDeg, 1.0);
 }
 
-TEST(LocalizeSingleScan, DISABLED_LivoxTenthOfASecondAt4m)
+TEST(LocalizeSingleScan, LivoxTenthOfASecondAt4m)
 {
-	// 10 000 points, ~600 on the tag: the sparsest frame a Livox gives. The
-	// pipeline finds no tag here with any parameters the localizer owns
-	// (docs/LOCALIZATION.md, "Limits"); kept disabled as the target.
+	// 10 000 points, ~600 on the tag: the sparsest frame a Livox gives.
 	const ScanResult r = relocalizeFromOneScan("livox", 0.1);
 	ASSERT_EQ(r.seen.size(), 1u);
 	EXPECT_LT(r.translationError, 0.03);
