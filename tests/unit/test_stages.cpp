@@ -88,8 +88,16 @@ TEST(CandidateFilter, ElongatedBoxIsTriedAsSquareWindows)
 	EXPECT_NEAR(windows.front().center.x(), 0.8, 1e-9);
 	EXPECT_NEAR(windows.back().center.x(), 1.2, 1e-9);
 	for (const auto& w : windows) EXPECT_EQ(rejectCandidate(w, 0.01, 0.002, p), "");
-	box.extent = {1.0, 0.2, 0.005};  // beyond split_aspect: a line, not a tag
+	box.extent = {2.0, 0.2, 0.005};  // beyond split_aspect: a pillar's edges from floor to roof
 	EXPECT_TRUE(squareWindows(box, 0.01, 0.002, p).empty());
+	// ... where a tag is, its square holds many more of the cluster's
+	// points than the line does: only that window is tried.
+	std::vector<double> along;
+	for (int k = 0; k < 200; k++) along.push_back(-1.0 + 0.01 * k);  // the line: 1 point per cm
+	for (int k = 0; k < 300; k++) along.push_back(0.45 + 0.0003 * k);  // a tag's edges around +0.5
+	const auto dense = squareWindows(box, 0.01, 0.002, p, along);
+	ASSERT_EQ(dense.size(), 1u);
+	EXPECT_NEAR(dense[0].center.x(), 1.5, 1e-9);
 	box.extent = {0.3, 0.05, 0.001};  // too narrow for any tag
 	EXPECT_TRUE(squareWindows(box, 0.01, 0.002, p).empty());
 }

@@ -19,20 +19,43 @@ std::string rejectCandidate(const OrientedBox& box, double band, double noise, c
 	return "";
 }
 
-std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p)
+std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p,
+									 const std::vector<double>& along)
 {
 	std::vector<OrientedBox> out;
 	const double l = box.extent.x(), w = box.extent.y();
-	if (!(w > 0) || l > p.splitAspect * w) return out;
+	if (!(w > 0)) return out;
+	const bool longLine = l > p.splitAspect * w;
+	if (longLine && along.empty()) return out;
 	OrientedBox window = box;
 	window.extent.x() = w;
 	if (!rejectCandidate(window, band, noise, p).empty()) return out;
 	// Half-overlapping windows from one end to the other, the last one
 	// flush with the far end.
 	const int steps = static_cast<int>(std::ceil((l - w) / (0.5 * w)));
-	for (int k = 0; k <= steps; k++)
+	std::vector<double> offsets;
+	for (int k = 0; k <= steps; k++) offsets.push_back(std::min(-0.5 * (l - w) + k * 0.5 * w, 0.5 * (l - w)));
+	if (longLine)
 	{
-		const double offset = std::min(-0.5 * (l - w) + k * 0.5 * w, 0.5 * (l - w));
+		// Along a long line (a pillar's corners from floor to roof) only the
+		// windows much denser than the line itself can hold a tag: a tag's
+		// edges fill its square, a line's only cross it.
+		std::vector<size_t> count(offsets.size(), 0);
+		for (double a : along)
+			for (size_t k = 0; k < offsets.size(); k++) count[k] += std::abs(a - offsets[k]) <= 0.5 * w;
+		std::vector<size_t> sorted = count;
+		std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+		const size_t median = sorted[sorted.size() / 2];
+		std::vector<double> dense;
+		for (size_t k = 0; k < offsets.size(); k++)
+		{
+			const bool peak = (k == 0 || count[k] >= count[k - 1]) && (k + 1 == count.size() || count[k] >= count[k + 1]);
+			if (peak && count[k] >= 3 * std::max<size_t>(median, 1)) dense.push_back(offsets[k]);
+		}
+		offsets = dense;
+	}
+	for (double offset : offsets)
+	{
 		window.center = box.center + box.axes.col(0) * offset;
 		out.push_back(window);
 	}

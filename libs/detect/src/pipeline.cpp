@@ -187,7 +187,11 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		// Too long for a tag: maybe a tag clustered together with an edge
 		// beside it (a pillar's corner, a shelf); its square windows are
 		// candidates of their own.
-		for (const OrientedBox& w : squareWindows(clusters[c].box, radius, 2 * spacing, cf))
+		std::vector<double> along;
+		const OrientedBox& b = clusters[c].box;
+		for (uint32_t i : clusters[c].points)
+			along.push_back((Eigen::Vector3d(m.xs[i], m.ys[i], m.zs[i]) - b.center).dot(b.axes.col(0)));
+		for (const OrientedBox& w : squareWindows(b, radius, 2 * spacing, cf, along))
 		{
 			rep.center = w.center;
 			rep.extent = w.extent;

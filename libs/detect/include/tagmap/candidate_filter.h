@@ -39,9 +39,13 @@ struct CandidateFilterParams
 std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
 
 /** Square boxes of `box`'s width, half-overlapping along its length, for a
- *  box too elongated for a tag (at most splitAspect): a tag clustered
- *  together with an edge beside it (a pillar's corner, a shelf) lies in one
- *  of them. Empty when the width itself could hold no tag. */
-std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
+ *  box too elongated for a tag: a tag clustered together with an edge
+ *  beside it (a pillar's corner, a shelf) lies in one of them. Up to
+ *  splitAspect every window; longer (a pillar from floor to roof) only the
+ *  windows holding at least 3x the median number of the cluster's points,
+ *  given as their offsets `along` the box's length from its centre. Empty
+ *  when the width itself could hold no tag. */
+std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p,
+									 const std::vector<double>& along = {});
 
 }  // namespace tagmap
