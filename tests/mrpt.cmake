@@ -16,8 +16,16 @@ set(TAGMAP_MRPT_ARTIFACTS ${PROJECT_BINARY_DIR}/test-artifacts/mrpt)
 add_test(NAME mrpt_fixture COMMAND tagmap_mrpt_fixture ${TAGMAP_MRPT_ARTIFACTS})
 set_tests_properties(mrpt_fixture PROPERTIES FIXTURES_SETUP mrpt_outputs)
 
-foreach(check rawlog_edit_info rawlogviewer scene_viewer pf_localization)
+foreach(check rawlog_edit_info rawlogviewer rawlogviewer_stock scene_viewer pf_localization)
   add_test(NAME mrpt_${check}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/mrpt/${check}.sh ${TAGMAP_MRPT_ARTIFACTS} $<TARGET_FILE:tagmap_mrpt_plugin>)
   set_tests_properties(mrpt_${check} PROPERTIES FIXTURES_REQUIRED mrpt_outputs TIMEOUT 180)
 endforeach()
+
+# The same tools on the simulator's parking scene (.simplemap in, every MRPT
+# output of `tagmap detect`), in build/test-artifacts/mrpt/parking/.
+add_test(NAME mrpt_parking
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/mrpt/parking.sh ${TAGMAP_MRPT_ARTIFACTS}/parking
+          $<TARGET_FILE:tagmap_mrpt_plugin> $<TARGET_FILE:tagmap> $<TARGET_FILE:tagmap_mrpt_fixture>
+          ${PROJECT_SOURCE_DIR}/share/scenes/parking.yaml)
+set_tests_properties(mrpt_parking PROPERTIES TIMEOUT 300)

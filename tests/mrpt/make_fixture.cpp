@@ -17,6 +17,7 @@
 #include <filesystem>
 
 #include <iostream>
+#include <stdexcept>
 
 #include "../../apps/tagmap/detect_outputs.h"
 #include "synthetic_tags.h"
@@ -87,8 +88,12 @@ int writeBeaconsAlong(int argc, char** argv)
 	const size_t every = argc == 6 ? std::stoul(argv[5]) : 1;
 	tagmap::localize::Trajectory kept;
 	for (size_t i = 0; i < truth.size(); i += std::max<size_t>(1, every)) kept.push_back(truth[i]);
+	if (kept.empty()) throw std::runtime_error(std::string(argv[2]) + ": no poses");
 	writeBeaconRawlog(argv[4], kept, tags);
-	std::cout << "beacons: " << kept.size() << " poses, " << tags.size() << " tags -> " << argv[4] << "\n";
+	const Eigen::Vector3d end = kept.back().pose.translation();
+	// The last line is what tests/mrpt/pf_localization.sh compares the filter's end with.
+	std::cout << "beacons: " << kept.size() << " poses, " << tags.size() << " tags -> " << argv[4] << "\n"
+			  << "end " << end.x() << " " << end.y() << "\n";
 	return 0;
 }
 }  // namespace
