@@ -28,12 +28,19 @@ gui_dismiss_tip() {
 }
 
 # gui_fill_screen WIN: moves WIN to the top-left corner and resizes it to the
-# whole screen (a window manager would have maximised it).
+# whole screen (a window manager would have maximised it). Repeated until it
+# holds: an app still laying out its first frame may resize itself again.
 gui_fill_screen() {
-  local geom
+  local geom x y w h
   geom=$(xdotool getdisplaygeometry)
-  xdotool windowmove "$1" 0 0 windowsize "$1" ${geom% *} ${geom#* }
-  sleep 1
+  for ((i = 0; i < 20; i++)); do
+    xdotool windowmove "$1" 0 0 windowsize "$1" ${geom% *} ${geom#* }
+    sleep 1
+    read -r x y w h < <(gui_geometry "$1")
+    [ "$x $y $w $h" = "0 0 $geom" ] && return 0
+  done
+  echo "window $1 stays at $x,$y ${w}x$h, not the whole screen $geom" >&2
+  return 1
 }
 
 # gui_geometry WIN: prints "X Y W H" of WIN on the screen.

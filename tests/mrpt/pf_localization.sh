@@ -4,20 +4,24 @@
 # errors, writes its output files, reads every tag of the map as a beacon and
 # ends within 0.25 m of where the robot ended.
 #   pf_localization.sh ARTIFACT_DIR PLUGIN.so [PREFIX BEACONS.rawlog END_X END_Y [KEY=VALUE...]]
-# The experiment is pf_localization.ini with each KEY=VALUE replacing its
-# line (e.g. the initial belief), followed by PREFIX.ini unchanged.
-# Defaults: the fixture (map.ini, beacons.rawlog ending at x=3.4, y=0.45,
-# make_fixture.cpp).
+# The experiment is share/mrpt/pf-localization.ini (the README's) with each
+# KEY=VALUE replacing its line, followed by PREFIX.ini unchanged.
+# Without PREFIX...: the fixture, make_fixture.cpp (map.ini, beacons.rawlog
+# ending at x=3.4, y=0.45, starting near the origin).
 set -euo pipefail
+if [ $# -le 2 ]; then
+  set -- "$@" map beacons.rawlog 3.4 0.45 init_PDF_min_x=-1 init_PDF_max_x=3 init_PDF_min_y=-2 init_PDF_max_y=1 \
+    init_PDF_min_yaw_deg=-30 init_PDF_max_yaw_deg=60
+fi
 dir=$(cd "$1" && pwd)
-here=$(cd "$(dirname "$0")" && pwd)
-prefix=${3:-map} beacons=${4:-beacons.rawlog} end_x=${5:-3.4} end_y=${6:-0.45}
-shift $(($# < 6 ? $# : 6))
+experiment=$(cd "$(dirname "$0")/../../share/mrpt" && pwd)/pf-localization.ini
+prefix=$3 beacons=$4 end_x=$5 end_y=$6
+shift 6
 cd "$dir"
 run=${prefix}_pf_localization_run.ini log=${prefix}_pf_localization.log
-cp "$here/pf_localization.ini" "$run"
+cp "$experiment" "$run"
 for kv in "$@"; do
-  grep -q "^${kv%%=*}=" "$run" || { echo "FAIL: pf_localization.ini has no key ${kv%%=*}"; exit 1; }
+  grep -q "^${kv%%=*}=" "$run" || { echo "FAIL: $experiment has no key ${kv%%=*}"; exit 1; }
   sed -i "s|^${kv%%=*}=.*|$kv|" "$run"
 done
 cat "$prefix.ini" >>"$run"
