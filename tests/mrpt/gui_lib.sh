@@ -7,7 +7,7 @@
 # gui_wait_window NAME [SECONDS]: prints the id of the first visible window
 # whose title contains NAME, waiting for it to appear.
 gui_wait_window() {
-  local name=$1 t=${2:-20} id
+  local name=$1 t=${2:-60} id
   for ((i = 0; i < t * 4; i++)); do
     id=$(xdotool search --onlyvisible --name "$name" 2>/dev/null | head -1)
     [ -n "$id" ] && { echo "$id"; return 0; }
@@ -21,7 +21,7 @@ gui_wait_window() {
 # one at start-up) with Escape, and checks it went.
 gui_dismiss_tip() {
   local tip
-  tip=$(gui_wait_window "Tip of the Day" 10) || return 1
+  tip=$(gui_wait_window "Tip of the Day" 30) || return 1
   xdotool windowfocus "$tip" key Escape
   sleep 0.5
   ! xdotool search --onlyvisible --name "Tip of the Day" >/dev/null 2>&1
@@ -96,13 +96,17 @@ gui_zoom() {
 gui_rawlog_select() {
   local before after
   before=$(xwininfo -children -id "$1" | grep -c '^ *0x')
-  xdotool mousemove 60 105 click 1
-  sleep 0.3
-  xdotool key --repeat $(($2 + 1)) --delay 100 Down
-  for ((i = 0; i < 40; i++)); do
-    after=$(xwininfo -children -id "$1" | grep -c '^ *0x')
-    ((after > before)) && { sleep 1; return 0; }
-    sleep 0.25
+  # Retried: until the file has loaded the tree has no rows to select. Each
+  # try starts again from the root row, so it lands on the same entry.
+  for ((try = 0; try < 8; try++)); do
+    xdotool mousemove 60 105 click 1
+    sleep 0.3
+    xdotool key --repeat $(($2 + 1)) --delay 100 Down
+    for ((i = 0; i < 20; i++)); do
+      after=$(xwininfo -children -id "$1" | grep -c '^ *0x')
+      ((after > before)) && { sleep 1; return 0; }
+      sleep 0.25
+    done
   done
   echo "RawLogViewer opened no 3D view for entry $2" >&2
   return 1
