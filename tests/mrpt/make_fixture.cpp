@@ -85,9 +85,15 @@ int writeBeaconsAlong(int argc, char** argv)
 {
 	auto truth = tagmap::localize::readTum(argv[2]);
 	const auto tags = tagmap::readTagsJson(argv[3]);
-	const size_t every = argc == 6 ? std::stoul(argv[5]) : 1;
+	size_t every = 1;
+	if (argc == 6)
+	{
+		const std::string e = argv[5];
+		if (e.empty() || e.find_first_not_of("0123456789") != std::string::npos || (every = std::stoul(e)) == 0)
+			throw std::runtime_error("EVERY must be a positive integer, not '" + e + "'");
+	}
 	tagmap::localize::Trajectory kept;
-	for (size_t i = 0; i < truth.size(); i += std::max<size_t>(1, every)) kept.push_back(truth[i]);
+	for (size_t i = 0; i < truth.size(); i += every) kept.push_back(truth[i]);
 	if (kept.empty()) throw std::runtime_error(std::string(argv[2]) + ": no poses");
 	writeBeaconRawlog(argv[4], kept, tags);
 	const Eigen::Vector3d end = kept.back().pose.translation();
