@@ -12,6 +12,7 @@ PACKAGES=(
   liboctomap-dev
   libgtest-dev googletest
   xvfb xauth imagemagick
+  xdotool x11-utils        # tests/mrpt: drive RawLogViewer / SceneViewer3D to their 3D views (xwininfo)
   chromium                 # tests/report: the HTML report opened in a headless browser
   clang libclang-rt-14-dev
 )

@@ -65,16 +65,10 @@ void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& m
 		p.tagMapDetectionOptions = iniDetectionKeys(detectionOptionsFrom(args));
 		mrpt_bridge::writeMetricMapIni(args.get("--ini"), tags, p);
 	}
-	if (!args.has("--tagmap") && !args.has("--rawlog")) return;
-
-	const auto tagMap = makeTagMap(args, map, tags);
-	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *tagMap);
-	if (args.has("--rawlog"))
-	{
-		mrpt_bridge::RawlogParams p;
-		p.extraObjects.push_back(tagMap);
-		mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags, p);
-	}
+	if (args.has("--rawlog")) mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags);
+	// A .tagmap is one serialized CTagMap, which is also a valid one-entry
+	// rawlog: `RawLogViewer -l plugin F.tagmap` shows it (docs/MRPT.md).
+	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(args, map, tags));
 }
 
 void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found)

@@ -15,7 +15,7 @@ void CTagMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const
 	{
 		mrpt_bridge::IntensityCloudParams cp;
 		cp.pointSize = static_cast<float>(visualOptions.pointSize);
-		o.insert(mrpt_bridge::makeIntensityCloud(m_points, cp));
+		o.insert(mrpt_bridge::makeIntensityCloud(m_points, cp, tags()));
 	}
 	mrpt_bridge::TagVisualParams vp;
 	vp.showLabel = visualOptions.showLabels;

@@ -3,7 +3,10 @@
 #include <mrpt/img/color_maps.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
+
+#include "tagmap/mrpt/tag_visual.h"
 
 namespace tagmap::mrpt_bridge
 {
@@ -21,11 +24,27 @@ std::pair<float, float> percentileRange(const mrpt::aligned_std_vector<float>& v
 	const float lo = at(0.01), hi = at(0.99);
 	return {lo, hi > lo ? hi : lo + 1.f};
 }
+
+// The boxes around drawn tag patterns, as tag-frame transforms and extents.
+struct HiddenBox
+{
+	Eigen::Isometry3d mapToTag;
+	double halfSide;
+	bool contains(const Eigen::Vector3d& p) const
+	{
+		const Eigen::Vector3d q = mapToTag * p;
+		return std::abs(q.x()) <= halfSide && std::abs(q.y()) <= halfSide && std::abs(q.z()) <= 0.1;
+	}
+};
 }  // namespace
 
 mrpt::opengl::CPointCloudColoured::Ptr makeIntensityCloud(const mrpt::maps::CPointsMapXYZI& map,
-														   const IntensityCloudParams& params)
+														   const IntensityCloudParams& params,
+														   const std::vector<TagDetection>& drawnOver)
 {
+	std::vector<HiddenBox> hidden;
+	for (const auto& t : drawnOver) hidden.push_back({t.pose.inverse(), drawnHalfSide(t)});
+
 	auto cloud = mrpt::opengl::CPointCloudColoured::Create();
 	cloud->setPointSize(params.pointSize);
 	const auto& xs = map.getPointsBufferRef_x();
@@ -37,6 +56,8 @@ mrpt::opengl::CPointCloudColoured::Ptr makeIntensityCloud(const mrpt::maps::CPoi
 	const auto [lo, hi] = percentileRange(is);
 	for (size_t i = 0; i < n; i += step)
 	{
+		const Eigen::Vector3d p(xs[i], ys[i], zs[i]);
+		if (std::any_of(hidden.begin(), hidden.end(), [&](const HiddenBox& b) { return b.contains(p); })) continue;
 		const float t = std::clamp((is[i] - lo) / (hi - lo), 0.f, 1.f);
 		float r, g, b;
 		mrpt::img::jet2rgb(t, r, g, b);

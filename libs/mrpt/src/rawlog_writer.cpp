@@ -15,9 +15,7 @@ void writeTagRawlog(const std::string& path, const mrpt::maps::CPointsMapXYZI& m
 	obs->timestamp = mrpt::Clock::now();
 	obs->scene = buildTagScene(map, tags, params.scene);
 
-	std::vector<mrpt::serialization::CSerializable::Ptr> objects{obs};
-	objects.insert(objects.end(), params.extraObjects.begin(), params.extraObjects.end());
-	writeSerializableSequenceGz(path, objects);
+	writeSerializableSequenceGz(path, {obs});
 }
 
 }  // namespace tagmap::mrpt_bridge

@@ -23,6 +23,25 @@ mrpt::img::CImage tagTextureImage(const std::string& family, int id, int pixelsP
 	return img;
 }
 
+namespace
+{
+// The drawn square [lo, hi]^2 in the tag frame: the bitmap includes a quiet
+// zone, placed so the border square spans [-s/2, s/2] as CONVENTIONS.md
+// defines the tag frame.
+std::pair<double, double> drawnSpan(const TagDetection& tag, const TagBitmap& bmp)
+{
+	const double cell = tag.size / bmp.borderCells;
+	const double lo = -(bmp.borderStart + 0.5 * bmp.borderCells) * cell;
+	return {lo, lo + bmp.cells * cell};
+}
+}  // namespace
+
+double drawnHalfSide(const TagDetection& tag)
+{
+	const auto [lo, hi] = drawnSpan(tag, renderTagBitmap(tag.family, tag.id));
+	return std::max(-lo, hi);
+}
+
 mrpt::opengl::CSetOfObjects::Ptr makeTagVisual(const TagDetection& tag, const TagVisualParams& params)
 {
 	auto out = mrpt::opengl::CSetOfObjects::Create();
@@ -31,12 +50,7 @@ mrpt::opengl::CSetOfObjects::Ptr makeTagVisual(const TagDetection& tag, const Ta
 	Eigen::Matrix4d T = tag.pose.matrix();
 	out->setPose(mrpt::poses::CPose3D::FromHomogeneousMatrix(mrpt::math::CMatrixDouble44(T)));
 
-	// The bitmap includes a quiet zone; place it so the border square spans
-	// [-s/2, s/2] as CONVENTIONS.md defines the tag frame.
-	const TagBitmap bmp = renderTagBitmap(tag.family, tag.id);
-	const double cell = tag.size / bmp.borderCells;
-	const double lo = -(bmp.borderStart + 0.5 * bmp.borderCells) * cell;
-	const double hi = lo + bmp.cells * cell;
+	const auto [lo, hi] = drawnSpan(tag, renderTagBitmap(tag.family, tag.id));
 	auto plane = mrpt::opengl::CTexturedPlane::Create(lo, hi, lo, hi);
 	plane->assignImage(tagTextureImage(tag.family, tag.id, params.pixelsPerCell));
 	plane->enableTextureLinearInterpolation(false);
@@ -50,7 +64,7 @@ mrpt::opengl::CSetOfObjects::Ptr makeTagVisual(const TagDetection& tag, const Ta
 	{
 		auto label = mrpt::opengl::CText::Create(out->getName());
 		label->setLocation(0, hi + 0.1 * tag.size, 0);
-		label->setColor_u8(255, 255, 0);
+		label->setColor_u8(255, 0, 255);  // magenta: not in the jet colours of the points
 		out->insert(label);
 	}
 	return out;

@@ -5,6 +5,10 @@
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 
+#include <vector>
+
+#include "tagmap/tag_detection.h"
+
 namespace tagmap::mrpt_bridge
 {
 struct IntensityCloudParams
@@ -15,8 +19,14 @@ struct IntensityCloudParams
 
 /** Points in map coordinates; intensity mapped to a jet colour map over the
  *  map's own [1st, 99th] percentile range, so a few retro-reflective outliers
- *  do not wash out everything else. */
+ *  do not wash out everything else.
+ *  Points under the pattern of a tag in `drawnOver` (within its drawn square,
+ *  drawnHalfSide(), and 10 cm of its plane) are left out: the pattern stands
+ *  for them, and a viewer with a 16-bit depth buffer (MRPT's GL canvases
+ *  under Xvfb, some drivers) cannot keep points a few cm behind a textured
+ *  square from showing through it. */
 mrpt::opengl::CPointCloudColoured::Ptr makeIntensityCloud(const mrpt::maps::CPointsMapXYZI& map,
-														   const IntensityCloudParams& params = {});
+														   const IntensityCloudParams& params = {},
+														   const std::vector<TagDetection>& drawnOver = {});
 
 }  // namespace tagmap::mrpt_bridge

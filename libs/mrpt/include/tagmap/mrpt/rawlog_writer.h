@@ -1,12 +1,11 @@
-// A result as an observations-only .rawlog. The first entry is a
-// CObservation3DScene (map coloured by intensity + tags with their
-// bitmaps), which a stock RawLogViewer shows without any plugin. Further
-// objects (e.g. a tagmap::maps::CTagMap for users who load the plugin) go
-// after it, so a reader that cannot parse them still gets the scene first.
+// A result as an observations-only .rawlog with one entry, a
+// CObservation3DScene (map coloured by intensity + tags with their bitmaps),
+// which a stock RawLogViewer shows without any plugin. Nothing of the plugin
+// goes in: MRPT cannot skip an object of an unregistered class, so a stock
+// reader would log an error on it (see docs/MRPT.md for where CTagMap goes).
 #pragma once
 
 #include <mrpt/maps/CPointsMapXYZI.h>
-#include <mrpt/serialization/CSerializable.h>
 
 #include <string>
 #include <vector>
@@ -19,7 +18,6 @@ struct RawlogParams
 {
 	std::string sensorLabel = "tagmap";
 	TagSceneParams scene;
-	std::vector<mrpt::serialization::CSerializable::Ptr> extraObjects;
 };
 
 void writeTagRawlog(const std::string& path, const mrpt::maps::CPointsMapXYZI& map,

@@ -22,6 +22,14 @@ struct TagSceneParams
 	TagVisualParams tag;
 };
 
+/** Points the main viewport's camera at the tags: at their centroid, from
+ *  the side they face, 20 deg above, far enough to see them all (without
+ *  tags: the whole map). Viewers that honour the scene's camera
+ *  (SceneViewer3D, with followCamera) start there. */
+void aimCamera(mrpt::opengl::COpenGLScene& scene, const mrpt::maps::CPointsMapXYZI& map,
+			   const std::vector<TagDetection>& tags);
+
+/** The map, the tags and a camera aimed at them (aimCamera). */
 mrpt::opengl::COpenGLScene::Ptr buildTagScene(const mrpt::maps::CPointsMapXYZI& map,
 											  const std::vector<TagDetection>& tags,
 											  const TagSceneParams& params = {});

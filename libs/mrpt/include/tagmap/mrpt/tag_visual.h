@@ -24,6 +24,10 @@ struct TagVisualParams
  *  pattern: MRPT's CTexturedPlane maps image row 0 to the plane's yMin. */
 mrpt::img::CImage tagTextureImage(const std::string& family, int id, int pixelsPerCell);
 
+/** Half the side of the square makeTagVisual() draws: the whole bitmap,
+ *  quiet zone (or outer data ring) included, in metres. */
+double drawnHalfSide(const TagDetection& tag);
+
 /** A set of objects posed at T_G_tag. Throws std::invalid_argument for a
  *  family or id renderTagBitmap() does not know. */
 mrpt::opengl::CSetOfObjects::Ptr makeTagVisual(const TagDetection& tag, const TagVisualParams& params = {});
