@@ -50,14 +50,13 @@ double borderContrast(const cv::Mat& img, double cx, double cy, double half, dou
 	return n > 20 ? sum / n : -1e9;
 }
 
-/** The square (centre, half side, angle) with the strongest dark-inside
+/** On `smooth` (the image blurred at sigma 1, once per image): the square
+ *  (centre, half side, angle) with the strongest dark-inside
  *  contrast along its outline, by coordinate search from `seed` with
  *  shrinking steps. Blur moves a border's thresholded outline but not the
  *  place where light turns dark fastest. */
-std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& img, const cv::RotatedRect& seed)
+std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& smooth, const cv::RotatedRect& seed)
 {
-	cv::Mat smooth;
-	cv::GaussianBlur(img, smooth, cv::Size(), 1.0);
 	double x[4] = {seed.center.x + 0.5, seed.center.y + 0.5, 0.25 * (seed.size.width + seed.size.height),
 				   seed.angle * M_PI / 180};
 	double best = borderContrast(smooth, x[0], x[1], x[2], x[3]);
@@ -99,6 +98,8 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 	// (about two point spacings: a pixel is 0.6 of one) joins a noisy or
 	// sparsely scanned border ring that the light one leaves in fragments.
 	std::vector<std::vector<cv::Point>> contours;
+	cv::Mat smooth;  // sigma 1: what the border-square fit measures contrast on
+	cv::GaussianBlur(gray8, smooth, cv::Size(), 1.0);
 	for (double sigma : {1.0, 3.0})
 	{
 		cv::Mat dark;
@@ -118,7 +119,7 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 		// blurred tag: the square its edges fit best is a quad too.
 		const cv::RotatedRect box = cv::minAreaRect(c);
 		if (box.size.width < 2 * box.size.height && box.size.height < 2 * box.size.width)
-			quads.push_back(fitBorderSquare(gray8, box));
+			quads.push_back(fitBorderSquare(smooth, box));
 		std::vector<cv::Point> hull, poly;
 		cv::convexHull(c, hull);
 		for (double eps = 0.02; eps <= 0.12 && poly.size() != 4; eps += 0.01)
