@@ -22,12 +22,28 @@ TEST(MrptBeaconId, RoundTripAndCollisionFree)
 		for (int id : {0, 1, f.idCount / 2, f.idCount - 1})
 		{
 			const int64_t b = encodeBeaconId(f.name, id);
-			EXPECT_TRUE(seen.insert(b).second) << f.name << " #" << id << " collides";
+			// Only the same marker (nested ArUco) may share an ID.
+			if (markerFamily(f.name, id) == f.name)
+			{
+				EXPECT_TRUE(seen.insert(b).second) << f.name << " #" << id << " collides";
+			}
 			EXPECT_LE(b, std::numeric_limits<int32_t>::max());  // CLandmarksMap ini reads IDs with read_int
 			const auto d = decodeBeaconId(b);
-			EXPECT_EQ(d.family, f.name);
+			EXPECT_EQ(d.family, markerFamily(f.name, id));
 			EXPECT_EQ(d.id, id);
 		}
+}
+
+TEST(MrptBeaconId, NestedArucoDictionariesGiveOneBeaconPerMarker)
+{
+	// The same printed marker, named after the dictionary a user asked for.
+	EXPECT_EQ(encodeBeaconId("aruco_6x6_250", 3), encodeBeaconId("aruco_6x6_50", 3));
+	EXPECT_EQ(encodeBeaconId("aruco_6x6_1000", 3), encodeBeaconId("aruco_6x6_50", 3));
+	EXPECT_EQ(encodeBeaconId("aruco_6x6_1000", 120), encodeBeaconId("aruco_6x6_250", 120));
+	EXPECT_EQ(decodeBeaconId(encodeBeaconId("aruco_6x6_1000", 120)).family, "aruco_6x6_250");
+	// Different bit sizes and aruco_original are different markers.
+	EXPECT_NE(encodeBeaconId("aruco_5x5_50", 3), encodeBeaconId("aruco_6x6_50", 3));
+	EXPECT_NE(encodeBeaconId("aruco_original", 3), encodeBeaconId("aruco_6x6_50", 3));
 }
 
 TEST(MrptBeaconId, StrideExceedsEveryFamily)
@@ -47,6 +63,7 @@ TEST(MrptBeaconId, RejectsInvalid)
 	EXPECT_THROW(encodeBeaconId("tag36h11", -1), std::invalid_argument);
 	EXPECT_THROW(encodeBeaconId("tag36h11", int(kBeaconIdStride)), std::invalid_argument);
 	EXPECT_THROW(encodeBeaconId("nope", 1), std::invalid_argument);
+	EXPECT_THROW(encodeBeaconId("aruco_6x6_50", 50), std::invalid_argument);
 	EXPECT_THROW(decodeBeaconId(42), std::invalid_argument);
 	EXPECT_THROW(decodeBeaconId(99 * kBeaconIdStride + 1), std::invalid_argument);
 }

@@ -177,6 +177,13 @@ std::string reportedFamily(const std::vector<std::string>& requested, const std:
 	return best ? best->name : "";
 }
 
+std::string markerFamily(const std::string& family, int id)
+{
+	std::vector<std::string> all;
+	for (const auto& f : supportedFamilies()) all.push_back(f.name);
+	return reportedFamily(all, family, id);
+}
+
 std::string supportedFamilyList()
 {
 	std::string s;

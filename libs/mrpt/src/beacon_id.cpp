@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "tagmap/tag_family.h"
+
 namespace tagmap::mrpt_bridge
 {
 const std::vector<std::pair<std::string, int>>& familyIndexTable()
@@ -39,7 +41,11 @@ int64_t encodeBeaconId(const std::string& family, int id)
 {
 	if (id < 0 || id >= kBeaconIdStride)
 		throw std::invalid_argument("tag id " + std::to_string(id) + " of " + family + " does not fit a beacon ID");
-	return familyIndex(family) * kBeaconIdStride + id;
+	// One beacon per printed marker: aruco_6x6_250 #3 is aruco_6x6_50 #3.
+	const TagFamilyInfo* info = findFamily(family);
+	if (info && id >= info->idCount)
+		throw std::invalid_argument(family + " has no tag id " + std::to_string(id));
+	return familyIndex(markerFamily(family, id)) * kBeaconIdStride + id;
 }
 
 DecodedBeaconId decodeBeaconId(int64_t beaconId)

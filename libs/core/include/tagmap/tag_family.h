@@ -40,6 +40,13 @@ struct TagFamilyInfo
  *  Without --family, the decoder names the smallest dictionary holding it. */
 bool sameMarker(const std::string& familyA, int idA, const std::string& familyB, int idB);
 
+/** The one name of a printed marker: for nested ArUco dictionaries, the
+ *  smallest supported dictionary holding `id` (aruco_6x6_250 #3 and
+ *  aruco_6x6_1000 #3 are both aruco_6x6_50 #3); any other family is its own
+ *  name. "" when no dictionary of that bit size holds `id`. Things that must
+ *  not depend on which dictionary a user asked for (beacon IDs) use it. */
+std::string markerFamily(const std::string& family, int id);
+
 /** The families a decoder has to search for `requested`: nested ArUco
  *  dictionaries of one bit size collapse to the largest requested one. */
 std::vector<std::string> searchFamilies(const std::vector<std::string>& requested);

@@ -13,6 +13,13 @@
 // hand-numbered beacons. The stride exceeds the largest family (tagCircle49h12,
 // 65535 ids), so IDs never collide, and the largest ID fits a signed int
 // (CLandmarksMap's ini reader parses IDs with read_int).
+//
+// A beacon is a printed marker, not a reading of it. OpenCV's nested ArUco
+// dictionaries hold the same first codes (DICT_6X6_50 is the first 50 of
+// DICT_6X6_250), so a tag is named aruco_6x6_50 or aruco_6x6_250 depending
+// on the --family asked for; both get the ID of markerFamily() (the smallest
+// dictionary holding the id), so a map made without --family and a rawlog
+// observed with one agree.
 #pragma once
 
 #include <cstdint>
@@ -34,8 +41,8 @@ const std::string& familyOfIndex(int index);
 /** Every (family, index) pair of the table, in index order. */
 const std::vector<std::pair<std::string, int>>& familyIndexTable();
 
-/** familyIndex(family) * kBeaconIdStride + id; throws std::invalid_argument
- *  for an id outside [0, kBeaconIdStride). */
+/** familyIndex(markerFamily(family, id)) * kBeaconIdStride + id; throws
+ *  std::invalid_argument for an unknown family or an id it does not have. */
 int64_t encodeBeaconId(const std::string& family, int id);
 
 struct DecodedBeaconId
@@ -44,7 +51,8 @@ struct DecodedBeaconId
 	int id = -1;
 };
 
-/** Inverse of encodeBeaconId; throws std::invalid_argument for an ID no tag
+/** Inverse of encodeBeaconId (the family is markerFamily()'s name; IDs
+ *  of the larger nested dictionaries' indices decode to those); throws std::invalid_argument for an ID no tag
  *  can have. */
 DecodedBeaconId decodeBeaconId(int64_t beaconId);
 
