@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 
@@ -154,7 +155,7 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
 												  const VoxelGrid& grid, const IntensityGradientParams& p,
-												  unsigned threads, double spread)
+												  unsigned threads, double spread, const GradientProgressFn& progress)
 {
 	IntensityGradientResult out;
 	const size_t n = grid.pointCount();
@@ -191,6 +192,7 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 		kSparse = 2
 	};
 	std::vector<uint8_t> keep(n, kDrop);
+	std::atomic<size_t> examined{0};
 	parallelForBlocks(grid.voxelCount(), threads, [&](size_t vb, size_t ve) {
 		VoxelGrid::NeighbourSweep sweep(grid, vb);
 		uint32_t block[27];
@@ -225,6 +227,7 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 				keep[order[k]] = g < 0 ? kSparse : (g >= cut ? kKeep : kDrop);
 			}
 		}
+		if (progress) progress(examined += grid.voxelOffset(ve) - grid.voxelOffset(vb), n);
 	}, 256);
 	sorted = {};
 	size_t kept = 0;

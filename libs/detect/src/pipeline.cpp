@@ -126,11 +126,20 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 			}
 	};
 
-	report("intensity_gradient", 0, 1);
+	report("intensity_gradient", 0, m.n);
 	StageTimer tGradient(out, "intensity_gradient", m.n);
-	IntensityGradientResult level = filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads);
+	// The workers report; the printer is single-threaded and counts only go up.
+	std::mutex gradientProgressMutex;
+	size_t gradientShown = 0;
+	IntensityGradientResult level =
+		filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads, 0, [&](size_t done, size_t total) {
+			std::lock_guard<std::mutex> lock(gradientProgressMutex);
+			if (done <= gradientShown) return;
+			gradientShown = done;
+			report("intensity_gradient", done, total);
+		});
 	tGradient.done(level.keptPoints.size());
-	report("intensity_gradient", 1, 1);
+	if (gradientShown < m.n) report("intensity_gradient", m.n, m.n);
 
 	report("clustering", 0, 1);
 	StageTimer tCluster(out, "clustering", level.keptPoints.size());

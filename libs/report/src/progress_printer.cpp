@@ -70,13 +70,14 @@ void ProgressPrinter::update(const std::string& stage, size_t done, size_t total
 		endStage();
 		stage_ = stage;
 		stageStart_ = lastLine_ = now();
+		lastDraw_ = 0;  // a new stage is drawn at once
 	}
 	done_ = done;
 	total_ = total;
 	if (total > 0 && done >= total)
 		endStage();
-	else if (style_ == ProgressParams::Style::Bar)
-		draw(false);
+	else if (style_ == ProgressParams::Style::Bar && now() - lastDraw_ >= p_.redrawSeconds)
+		draw(false);  // stages that report per block of points call this thousands of times a second
 }
 
 void ProgressPrinter::finish()
@@ -128,6 +129,7 @@ void ProgressPrinter::draw(bool final)
 		std::fflush(p_.stream);
 		return;
 	}
+	lastDraw_ = t;
 	// Bar: "\r" + clear-to-end-of-line redraws in place; a finished stage
 	// keeps its line, so the terminal ends with one line per stage.
 	std::string bar;

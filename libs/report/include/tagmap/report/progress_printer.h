@@ -75,7 +75,7 @@ class ProgressPrinter
 
 	std::string stage_;
 	size_t done_ = 0, total_ = 0;
-	double start_ = 0, stageStart_ = 0, lastLine_ = 0;
+	double start_ = 0, stageStart_ = 0, lastLine_ = 0, lastDraw_ = 0;
 	unsigned spin_ = 0;
 };
 
