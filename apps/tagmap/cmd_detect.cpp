@@ -106,6 +106,7 @@ int runDetect(int argc, char** argv)
 		progress.update("reading", 0, 0);
 
 		io::LoadReport load;
+		load.progress = [&](size_t pointsSoFar) { progress.update("reading", pointsSoFar, 0); };
 		const mrpt::maps::CPointsMapXYZI map = io::loadPointCloud(input, &load);
 		progress.update("reading", map.size(), map.size());
 		if (!quiet)

@@ -24,6 +24,21 @@ TEST(IoRoundTrip, SavePcdBinaryThenLoad)
 	EXPECT_EQ(r.pointsKept, 1000u);
 }
 
+TEST(IoRoundTrip, ProgressEveryMillionPointsOrSo)
+{
+	const size_t step = LoadReport::kProgressPoints, n = 2 * step + 5;
+	mrpt::maps::CPointsMapXYZI map;
+	map.resize(n);
+	for (size_t k = 0; k < n; k++) map.setPointRGB(k, 0.001f * k, 1, 2, 0.5f, 0, 0);
+	const std::string path = scratchPath("progress.pcd");
+	tagmap::io::savePcdBinary(path, map);
+	std::vector<size_t> heard;
+	LoadReport r;
+	r.progress = [&](size_t soFar) { heard.push_back(soFar); };
+	EXPECT_EQ(loadPointCloud(path, &r).size(), n);
+	EXPECT_EQ(heard, (std::vector<size_t>{step, 2 * step}));
+}
+
 TEST(IoRoundTrip, EmptyMap)
 {
 	const std::string path = scratchPath("empty.pcd");

@@ -46,7 +46,8 @@ void loadPointCloud(const std::string& path, mrpt::maps::CPointsMapXYZI& out, Lo
 	out.resize(0);
 	out.mark_as_modified();
 	const Reader read = readerFor(path);
-	LoadReport local;
+	LoadReport local;  // the caller's report is filled only on success
+	if (report) local.progress = report->progress;
 	try
 	{
 		read(path, out, local);

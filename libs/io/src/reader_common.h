@@ -55,7 +55,9 @@ class MapFiller
 
 	void add(float x, float y, float z, float intensity)
 	{
-		++read_;
+		// The count spans every observation of a .simplemap, not just this filler's.
+		if ((report_.pointsRead + ++read_) % LoadReport::kProgressPoints == 0 && report_.progress)
+			report_.progress(report_.pointsRead + read_);
 		// One comparison chain rejects NaN too; the rare rejects are sorted
 		// into non-finite and too-far off the fast path.
 		if (!(std::fabs(x) <= kMaxAbsCoordinate && std::fabs(y) <= kMaxAbsCoordinate &&

@@ -11,6 +11,7 @@
 #include <mrpt/maps/CPointsMapXYZI.h>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace tagmap::io
@@ -33,6 +34,10 @@ struct LoadReport
 	// observations passed over because they carry no usable intensity.
 	size_t observationsUsed = 0;
 	size_t observationsSkipped = 0;
+	/** Set by the caller to hear how far a long read is: called with the
+	 *  points read so far, every kProgressPoints points, on the calling thread. */
+	std::function<void(size_t pointsSoFar)> progress;
+	static constexpr size_t kProgressPoints = size_t{1} << 20;
 };
 
 /** The extensions loadPointCloud() understands, for messages and --help. */
