@@ -12,7 +12,7 @@
 #include "tagmap/errors.h"
 #include "tagmap/localize/direct_localizer.h"
 #include "tagmap/localize/pf_localizer.h"
-#include "tagmap/localize/rawlog_file.h"
+#include "tagmap/io/rawlog_file.h"
 #include "tagmap/localize/trajectory_errors.h"
 #include "tagmap/tags_json.h"
 
@@ -69,7 +69,7 @@ int runLocalize(int argc, char** argv)
 		checkOutputWritable(a.get("--out"));
 		if (a.has("--errors")) checkOutputWritable(a.get("--errors"));
 
-		const auto steps = localize::localizationSteps(localize::loadRawlog(a.get("--rawlog")), a.get("--rawlog"));
+		const auto steps = localize::localizationSteps(io::loadRawlog(a.get("--rawlog")), a.get("--rawlog"));
 		localize::Trajectory estimate;
 		std::string extra = "\"method\": \"" + method + "\", \"steps\": " + std::to_string(steps.size());
 		if (method == "pf")

@@ -11,7 +11,7 @@
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
 #include "tagmap/localize/observe_rawlog.h"
-#include "tagmap/localize/rawlog_file.h"
+#include "tagmap/io/rawlog_file.h"
 #include "tagmap/localize/scan_tags.h"
 
 namespace tagmap::app
@@ -53,7 +53,7 @@ int runObserve(int argc, char** argv)
 		const std::string in = a.positional[0], out = a.positional[1];
 		const PipelineParams params = observeParams(a);
 		checkOutputWritable(out);
-		const mrpt::obs::CRawlog log = localize::loadRawlog(in);
+		const mrpt::obs::CRawlog log = io::loadRawlog(in);
 		const bool quiet = a.has("--quiet");
 		localize::ObserveReport report;
 		const mrpt::obs::CRawlog observed =
@@ -63,7 +63,7 @@ int runObserve(int argc, char** argv)
 					std::fprintf(stderr, "tagmap observe: scan %zu/%zu\n", done, total);
 			});
 		if (report.scans == 0) throw InputError(in, "", "no LiDAR observation with intensity");
-		localize::saveRawlog(out, observed);
+		io::saveRawlog(out, observed);
 		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s -> %s\n", report.scans,
 					report.scansWithTags, report.tagsSeen, report.seconds, out.c_str());
 		return 0;

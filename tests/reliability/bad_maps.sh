@@ -114,6 +114,19 @@ CASE=directory-input
 mkdir -p "$M/dir.pcd"
 expect_detect_rejects "$M/dir.pcd" "dir\.pcd: is not a regular file"
 
+# ---- MRPT files (MRPT prints multi-line exceptions with stack traces) ------
+CASE=simplemap-garbage
+printf 'not a simplemap\n' >"$M/junk.simplemap"
+expect_detect_rejects "$M/junk.simplemap" "junk\.simplemap: not a readable MRPT simplemap"
+
+CASE=rawlog-garbage
+printf 'not a rawlog\n' >"$M/junk.rawlog"
+expect_detect_rejects "$M/junk.rawlog" "junk\.rawlog: object 1: not a readable MRPT rawlog"
+
+CASE=rawlog-empty
+: >"$M/empty.rawlog"
+expect_detect_rejects "$M/empty.rawlog" "empty\.rawlog: empty rawlog"
+
 # ---- skipped, not fatal ----------------------------------------------------
 CASE=nan-inf-points-skipped
 { pcd_header "x y z intensity" "4 4 4 4" "F F F F" 4 4 ascii; printf '0 0 1 5\nnan 0 1 5\n0 inf 1 5\n0 0 1 -inf\n'; } >"$M/nan.pcd"

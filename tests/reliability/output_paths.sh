@@ -33,6 +33,8 @@ CASE=detect-output-is-folder
 expect_detect_rejects_output "$WORK/new" "new: is a directory"
 CASE=detect-output-in-proc
 expect_detect_rejects_output "/proc/self/tags.json" "/proc/self/tags\.json: "
+CASE=detect-output-where-no-file-can-be-made
+expect_detect_rejects_output "/proc/tags.json" "/proc/tags\.json: (cannot create a file in folder|folder) /proc"
 CASE=detect-output-empty
 expect_detect_rejects_output "" "output path is empty"
 

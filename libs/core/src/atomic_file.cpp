@@ -1,5 +1,6 @@
 #include "tagmap/atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -35,6 +36,13 @@ void checkOutputWritable(const std::string& path)
 	if (ec) throw InputError(path, "", "cannot create folder " + dir.string() + ": " + ec.message());
 	if (::access(dir.c_str(), W_OK) != 0)
 		throw InputError(path, "", "folder " + dir.string() + " is not writable: " + std::strerror(errno));
+	// access() says yes to root everywhere, and to folders like /proc where no
+	// file can be made: create (and remove) the temporary file for real.
+	const std::string probe = temporaryNameFor(path);
+	const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+	if (fd < 0) throw InputError(path, "", "cannot create a file in folder " + dir.string() + ": " + std::strerror(errno));
+	::close(fd);
+	::unlink(probe.c_str());
 }
 
 void writeFileAtomicallyByName(const std::string& path, const std::function<void(const std::string&)>& write)

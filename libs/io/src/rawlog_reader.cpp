@@ -17,6 +17,7 @@
 #include "readers.h"
 #include "tagmap/errors.h"
 #include "tagmap/io/mrpt_observations.h"
+#include "tagmap/io/rawlog_file.h"
 
 namespace tagmap::io::detail
 {
@@ -85,10 +86,7 @@ std::optional<mrpt::poses::CPose3DInterpolator> readTum(const std::string& rawlo
 
 void readRawlog(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report)
 {
-	mrpt::obs::CRawlog log;
-	if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "no such file");
-	if (!log.loadFromRawLogFile(path) || log.size() == 0)
-		throw InputError(path, "", "not a readable MRPT rawlog (or empty)");
+	const mrpt::obs::CRawlog log = loadRawlog(path);
 	report.format = "rawlog";
 	report.intensityField = "observation intensity";
 

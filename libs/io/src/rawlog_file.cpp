@@ -1,4 +1,4 @@
-#include "tagmap/localize/rawlog_file.h"
+#include "tagmap/io/rawlog_file.h"
 
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/serialization/CArchive.h>
@@ -8,21 +8,8 @@
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
 
-namespace tagmap::localize
+namespace tagmap::io
 {
-namespace
-{
-/** The "Message:" line of an MRPT exception text, or its first line. */
-std::string oneLine(const std::string& what)
-{
-	const auto m = what.find("Message:");
-	const auto from = m == std::string::npos ? 0 : m + 8;
-	std::string s = what.substr(from, what.find('\n', from) - from);
-	s.erase(0, s.find_first_not_of(' '));
-	return s;
-}
-}  // namespace
-
 mrpt::obs::CRawlog loadRawlog(const std::string& path)
 {
 	if (!std::filesystem::is_regular_file(path)) throw InputError(path, "", "no such file");
@@ -43,7 +30,7 @@ mrpt::obs::CRawlog loadRawlog(const std::string& path)
 		}
 		catch (const std::exception& e)
 		{
-			throw InputError(path, "object " + std::to_string(n + 1), "not a readable MRPT rawlog (" + oneLine(e.what()) + ")");
+			throw InputError(path, "object " + std::to_string(n + 1), "not a readable MRPT rawlog (" + errorSummary(e.what()) + ")");
 		}
 		log.insert(obj);
 	}
@@ -58,4 +45,4 @@ void saveRawlog(const std::string& path, const mrpt::obs::CRawlog& log)
 	});
 }
 
-}  // namespace tagmap::localize
+}  // namespace tagmap::io
