@@ -37,7 +37,8 @@ PipelineParams pipelineParamsFromArgs(const cli::Args& args)
 	if (args.has("--tag-size"))
 	{
 		params.tagSize = args.getDouble("--tag-size", 0);
-		if (!(params.tagSize > 0)) throw cli::UsageError("--tag-size must be a positive length in metres");
+		if (!(params.tagSize > 0 && params.tagSize <= kMaxTagSize))
+			throw cli::UsageError("--tag-size must be a positive length in metres, at most 10");
 	}
 	if (args.has("--threads"))
 	{

@@ -38,6 +38,8 @@ CASE=tag-size-text
 detect_with_bad --tag-size big -- "--tag-size: 'big' is not a number"
 CASE=tag-size-nan
 detect_with_bad --tag-size nan -- "--tag-size"
+CASE=tag-size-absurd
+detect_with_bad --tag-size 1e30 -- "--tag-size must be a positive length in metres, at most 10"
 CASE=threads-zero
 detect_with_bad --threads 0 -- "--threads"
 CASE=threads-negative
@@ -58,6 +60,8 @@ config_case() {
 	expect_rejects "$1\.yaml: .*$3" config --dump --config "$C/$1.yaml"
 }
 config_case tag-size-negative 'tag_size: -0.2' "tag_size"
+config_case tag-size-in-millimetres 'tag_size: 164' "tag_size must be a length in metres up to 10"
+config_case max-tag-size-absurd $'candidates:\n  max_tag_size: 1000' "candidates.max_tag_size must be at most 10"
 config_case threshold-zero $'gradient:\n  threshold: 0' "gradient\.threshold"
 config_case threshold-negative $'gradient:\n  threshold: -1' "gradient\.threshold"
 config_case min-size-negative $'candidates:\n  min_tag_size: -0.1' "candidates\.min_tag_size"

@@ -7,6 +7,7 @@
 
 #include "tagmap/candidate_filter.h"
 #include "tagmap/intensity_gradient.h"
+#include "tagmap/pattern_refinement.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_quads.h"
 
@@ -127,4 +128,35 @@ TEST(TagQuads, FindsTheBorderSquareAndPermutationsMatchReordering)
 		const std::vector<int>& perm = cellPermutation(bm.cells, order);
 		for (size_t k = 0; k < direct.size(); k++) EXPECT_NEAR(direct[k], base[perm[k]], 1.0) << "order " << order;
 	}
+}
+
+// A decoded square that lies almost off its points: exactly 20 points just
+// inside the bitmap's left edge, so the refinement's Jacobian steps push
+// them off the grid. It must reject the tag, not read past its residuals
+// (a crash seen on single scans with every family searched).
+TEST(PatternRefinement, SquareAtTheEdgeOfItsPointsIsRejectedCleanly)
+{
+	TagDetection t;
+	t.family = "tag36h11";
+	t.id = 0;
+	t.size = 0.8;  // 8 border cells of 0.1 m
+	const TagBitmap bm = renderTagBitmap(t.family, t.id);
+	const double cell = t.size / bm.borderCells;
+	// The bitmap's left edge (its quiet zone included), plus a hair: the
+	// model is sampled between pixel centres, 1/16 cell inside the edge.
+	const auto edgeX = static_cast<float>(-(bm.borderStart + bm.borderCells / 2.0) * cell + 0.07 * cell);
+	std::vector<float> x, y, z, i;
+	PlaneImage plane;
+	plane.localSpacing = 0.02;
+	for (int k = 0; k < 20; k++)
+	{
+		x.push_back(edgeX);
+		y.push_back(-0.4f + 0.04f * static_cast<float>(k));
+		z.push_back(0);
+		i.push_back(static_cast<float>(k % 2));
+		plane.inliers.push_back(static_cast<uint32_t>(k));
+	}
+	PatternRefinementParams p;
+	EXPECT_FALSE(refineWithPattern(t, plane, x.data(), y.data(), z.data(), i.data(), p));
+	EXPECT_LT(t.patternFit, p.minPatternFit);
 }

@@ -99,6 +99,9 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	const PatternModel* chosen = model;
 	auto evaluate = [&](const FitState& s, bool wantResiduals) {
 		Evaluation e;
+		// Always one residual per point (0 for a point off the grid), even
+		// when too few are left to judge: the Jacobian subtracts these vectors.
+		if (wantResiduals) e.residuals = Eigen::VectorXd::Zero(static_cast<long>(q.size()));
 		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
 		std::vector<double> m(q.size(), -1);
 		double sm = 0, sI = 0, smm = 0, smI = 0, sII = 0;
@@ -126,7 +129,6 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		e.cost = std::max(0.0, vI - gain * cov);
 		if (wantResiduals)
 		{
-			e.residuals = Eigen::VectorXd::Zero(static_cast<long>(q.size()));
 			// Points leaving the grid get the mean residual 0: keeps the vector length fixed.
 			for (size_t k = 0; k < q.size(); k++)
 				if (m[k] >= 0) e.residuals(static_cast<long>(k)) = I[k] - (offset + gain * m[k]);
@@ -143,6 +145,11 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		if (best.used == 0 || e.correlation > best.correlation) best = e, chosen = &candidate;
 	}
 	model = chosen;
+	if (best.used < 20)  // the decoded square lies mostly off the points
+	{
+		t.patternFit = 0;
+		return false;
+	}
 	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
 	// logScale); steps of a small angle / a twentieth of a cell.
 	auto jacobian = [&](const FitState& at, const Eigen::VectorXd& r0, int n) {

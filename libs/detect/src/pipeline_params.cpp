@@ -189,8 +189,9 @@ void PipelineParams::validate() const
 		if (!(v > 0) || !std::isfinite(v))
 			throw std::invalid_argument(std::string(name) + " must be positive (got " + std::to_string(v) + ")");
 	};
-	if (tagSize < 0 || !std::isfinite(tagSize))
-		throw std::invalid_argument("tag_size must be positive, or 0 for unknown (got " + std::to_string(tagSize) + ")");
+	if (!(tagSize >= 0 && tagSize <= kMaxTagSize))
+		throw std::invalid_argument("tag_size must be a length in metres up to 10, or 0 for unknown (got " +
+									std::to_string(tagSize) + ")");
 	positive(gradientRadiusSpacings, "gradient_radius_spacings");
 	positive(gradient.threshold, "gradient.threshold");
 	if (gradient.densityLevels < 1 || gradient.densityLevels > 6)
@@ -202,6 +203,7 @@ void PipelineParams::validate() const
 	for (double sc : clustering.scales) positive(sc, "clustering.scales entries");
 	positive(candidates.minTagSize, "candidates.min_tag_size");
 	positive(candidates.maxTagSize, "candidates.max_tag_size");
+	if (candidates.maxTagSize > kMaxTagSize) throw std::invalid_argument("candidates.max_tag_size must be at most 10 (metres)");
 	if (candidates.maxTagSize < candidates.minTagSize)
 		throw std::invalid_argument("candidates.max_tag_size must be at least candidates.min_tag_size");
 	if (candidates.maxOversize < 1) throw std::invalid_argument("candidates.max_oversize must be at least 1");

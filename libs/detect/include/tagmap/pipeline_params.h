@@ -21,6 +21,10 @@
 
 namespace tagmap
 {
+/** Largest tag size accepted anywhere (metres): printed fiducials are a few
+ *  decimetres; a bigger number is a unit mistake (millimetres for metres). */
+constexpr double kMaxTagSize = 10.0;
+
 struct PipelineParams
 {
 	std::vector<std::string> families;  // empty: every supported family
