@@ -13,6 +13,7 @@
 #include "tagmap/localize/observe_rawlog.h"
 #include "tagmap/io/rawlog_file.h"
 #include "tagmap/localize/scan_tags.h"
+#include "tagmap/report/progress_printer.h"
 
 namespace tagmap::app
 {
@@ -25,7 +26,8 @@ const char* kUsage =
 	"next to each scan, a CObservationBeaconRanges (range to each tag centre, beacon IDs\n"
 	"as in docs/MRPT.md) and a tagmap::obs::CObservationTagPoses (T_sensor_tag + 6x6\n"
 	"covariance; RawLogViewer -l build/lib/libtagmap_mrpt_plugin.so shows it).\n"
-	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md).\n";
+	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md).\n"
+	"  --quiet          print nothing but errors (default: progress on stderr and a summary line)\n";
 
 /** Single-scan parameters unless a config file says otherwise; the flags win. */
 PipelineParams observeParams(const cli::Args& a)
@@ -53,17 +55,21 @@ int runObserve(int argc, char** argv)
 		const std::string in = a.positional[0], out = a.positional[1];
 		const PipelineParams params = observeParams(a);
 		checkOutputWritable(out);
-		const mrpt::obs::CRawlog log = io::loadRawlog(in);
 		const bool quiet = a.has("--quiet");
+		report::ProgressParams pp;
+		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
+		report::ProgressPrinter progress(pp);
+		progress.update("reading", 0, 0);
+		const mrpt::obs::CRawlog log = io::loadRawlog(in);
+		progress.update("reading", log.size(), log.size());
 		localize::ObserveReport report;
-		const mrpt::obs::CRawlog observed =
-			localize::observeRawlog(log, Pipeline(params), {}, &report, [&](size_t done, size_t total) {
-				// A line per tenth: readable in logs and on terminals alike.
-				if (!quiet && (done * 10 / total != (done - 1) * 10 / total || done == total))
-					std::fprintf(stderr, "tagmap observe: scan %zu/%zu\n", done, total);
-			});
+		const mrpt::obs::CRawlog observed = localize::observeRawlog(
+			log, Pipeline(params), {}, &report, [&](size_t done, size_t total) { progress.update("scans", done, total); });
 		if (report.scans == 0) throw InputError(in, "", "no LiDAR observation with intensity");
+		progress.update("writing", 0, 0);
 		io::saveRawlog(out, observed);
+		progress.finish();
+		if (quiet) return 0;
 		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s -> %s\n", report.scans,
 					report.scansWithTags, report.tagsSeen, report.seconds, out.c_str());
 		return 0;

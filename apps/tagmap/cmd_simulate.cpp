@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
+#include "tagmap/report/progress_printer.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/sim_outputs.h"
 #include "tagmap/sim/sim_rawlog.h"
@@ -19,13 +20,14 @@ namespace
 const char* kUsage =
 	"Usage: tagmap simulate SCENE.yaml --out DIR [--seed N] [--intensity-scale 1|255|65535]\n"
 	"                       [--points N] [--param NAME=VALUE] [--threads N] [--simplemap]\n"
-	"                       [--run NAME] [--rawlog FILE]\n"
+	"                       [--run NAME] [--rawlog FILE] [--quiet]\n"
 	"Simulates LiDAR scans of a YAML scene and writes DIR/map.pcd and DIR/ground_truth.json;\n"
 	"with --simplemap also DIR/scans.simplemap, DIR/trajectory_true.tum, DIR/trajectory_drifted.tum.\n"
 	"  --points N        rescale the sensors' density for a map of about N points\n"
 	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml)\n"
 	"  --run NAME        simulate only this run of the scene\n"
-	"  --rawlog FILE     also write an MRPT rawlog (odometry + scans) and DIR/trajectory_true.tum\n";
+	"  --rawlog FILE     also write an MRPT rawlog (odometry + scans) and DIR/trajectory_true.tum\n"
+	"  --quiet           print nothing but errors (default: progress on stderr and a summary line)\n";
 
 sim::SceneParameters parseParam(const std::string& s)
 {
@@ -41,7 +43,7 @@ int runSimulate(int argc, char** argv)
 {
 	return cli::runCommand("simulate", [&] {
 		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads", "--run", "--rawlog"},
-									   {"--simplemap", "--help"});
+									   {"--simplemap", "--quiet", "--help"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage;
@@ -72,11 +74,20 @@ int runSimulate(int argc, char** argv)
 		}
 		// Fail on an unwritable output now, not after the simulation.
 		checkOutputWritable((std::filesystem::path(a.get("--out")) / "map.pcd").string());
-		const sim::SimulationOutput out = sim::simulate(scene, opt);
+		const bool quiet = a.has("--quiet");
+		report::ProgressParams pp;
+		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
+		report::ProgressPrinter progress(pp);
+		progress.update("casting rays", 0, 0);
+		const sim::SimulationOutput out =
+			sim::simulate(scene, opt, [&](size_t done, size_t total) { progress.update("casting rays", done, total); });
+		progress.update("writing", 0, 0);
 		sim::writeSimulationOutputs(a.get("--out"), out, {a.has("--simplemap"), opt.seed});
 		if (a.has("--rawlog"))
 			sim::writeSimulationRawlog(a.get("--rawlog"),
 									   (std::filesystem::path(a.get("--out")) / "trajectory_true.tum").string(), out);
+		progress.finish();
+		if (quiet) return 0;
 
 		std::cout << "scene " << out.sceneName << ": " << out.map.size() << " points from " << out.frames.size()
 				  << " frames, " << out.truth.size() << " tags";

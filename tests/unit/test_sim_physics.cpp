@@ -1,6 +1,6 @@
 // Measurement physics and engineering guarantees: range noise statistics,
-// footprint blending (edges, mixed pixels), exact intensity scaling and
-// thread-count independence.
+// footprint blending (edges, mixed pixels), exact intensity scaling,
+// thread-count independence and progress reports.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -102,6 +102,28 @@ TEST(SimPhysics, SameOutputForAnyThreadCount)
 	one.map.getPointFast(100, x1, y1, z1);
 	other.map.getPointFast(100, x2, y2, z2);
 	EXPECT_NE(x1, x2);  // the seed matters
+}
+
+TEST(SimPhysics, ProgressCountsEveryRayOnceAndNeverStepsBack)
+{
+	const Scene scene = wallScene(0.01, 0);
+	SimOptions o;
+	o.threads = 3;
+	o.blockRays = 512;  // many blocks on few threads: reports race if unserialized
+	size_t calls = 0, last = 0, lastTotal = 0;
+	bool monotonic = true;
+	const auto out = simulate(scene, o, [&](size_t done, size_t total) {
+		calls++;  // serialized by the engine, so plain counters are safe
+		monotonic = monotonic && done > last && done <= total;
+		last = done;
+		lastTotal = total;
+	});
+	EXPECT_TRUE(monotonic);
+	EXPECT_EQ(last, out.raysCast);
+	EXPECT_EQ(lastTotal, out.raysCast);
+	EXPECT_EQ(calls, (out.raysCast + 511) / 512);
+	o.blockRays = 8192;
+	expectSamePoints(simulate(scene, o), simulate(scene, o, [](size_t, size_t) {}));
 }
 
 TEST(SimPhysics, FootprintBlendsIntensityAcrossInkEdges)

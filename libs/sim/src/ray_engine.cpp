@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <thread>
 
 #include "tagmap/sim/beam_footprint.h"
@@ -57,7 +58,7 @@ void castBlock(const Block& b, const Frame& f, const ScanRun& run, const SensorS
 }  // namespace
 
 EngineResult castFrames(const Scene& scene, const World& world, const std::vector<Frame>& frames,
-						const SimOptions& options)
+						const SimOptions& options, const SimProgressFn& progress)
 {
 	std::vector<SensorModels> models(scene.sensors.size());
 	for (size_t s = 0; s < scene.sensors.size(); s++)
@@ -81,6 +82,8 @@ EngineResult castFrames(const Scene& scene, const World& world, const std::vecto
 
 	std::vector<std::vector<SimPoint>> outs(blocks.size());
 	std::atomic<size_t> next{0};
+	std::mutex progressMutex;  // one report at a time, counts never step back
+	size_t raysDone = 0;
 	auto worker = [&]() {
 		for (size_t k = next++; k < blocks.size(); k = next++)
 		{
@@ -90,6 +93,12 @@ EngineResult castFrames(const Scene& scene, const World& world, const std::vecto
 			castBlock(b, f, scene.runs[f.run], scene.sensors[f.sensor], models[f.sensor], world, options.seed,
 					  outs[k]);
 			outs[k].shrink_to_fit();
+			if (progress)
+			{
+				std::lock_guard<std::mutex> lock(progressMutex);
+				raysDone += b.end - b.begin;
+				progress(raysDone, res.rays);
+			}
 		}
 	};
 	unsigned nThreads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());

@@ -20,6 +20,6 @@ struct EngineResult
 };
 
 EngineResult castFrames(const Scene& scene, const World& world, const std::vector<Frame>& frames,
-						const SimOptions& options);
+						const SimOptions& options, const SimProgressFn& progress = {});
 
 }  // namespace tagmap::sim

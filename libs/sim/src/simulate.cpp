@@ -85,7 +85,7 @@ std::vector<TagDetection> truthAsMapped(const SimulationOutput& out, size_t firs
 }
 }  // namespace
 
-SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options)
+SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const SimProgressFn& progress)
 {
 	const auto start = std::chrono::steady_clock::now();
 	SimulationOutput out;
@@ -116,7 +116,7 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options)
 
 	const std::vector<Frame> frames = scheduleFrames(scene);
 	checkRayBudget(scene, frames);
-	EngineResult cast = castFrames(scene, world, frames, options);
+	EngineResult cast = castFrames(scene, world, frames, options, progress);
 	out.raysCast = cast.rays;
 	out.points = std::move(cast.points);
 

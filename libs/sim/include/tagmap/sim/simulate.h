@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,10 @@ struct SimulationOutput
 	double seconds = 0;
 };
 
-SimulationOutput simulate(const Scene& scene, const SimOptions& options = {});
+/** Rays cast so far of all the rays to cast; called from worker threads,
+ *  serialized, with non-decreasing counts (a block of rays at a time). */
+using SimProgressFn = std::function<void(size_t raysDone, size_t raysTotal)>;
+
+SimulationOutput simulate(const Scene& scene, const SimOptions& options = {}, const SimProgressFn& progress = {});
 
 }  // namespace tagmap::sim
