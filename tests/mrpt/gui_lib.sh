@@ -61,6 +61,23 @@ gui_gl_canvas() {
   [ -n "$best" ] && echo "$best"
 }
 
+# gui_big_canvas WIN: prints the id of WIN's GL canvas once it covers at
+# least a quarter of the screen. An app may shrink its window again after
+# gui_fill_screen (SceneViewer3D did once, while loading a large scene), so
+# the window is filled again each second until its canvas is big.
+gui_big_canvas() {
+  local geom view w h
+  geom=$(xdotool getdisplaygeometry)
+  for ((i = 0; i < 20; i++)); do
+    view=$(gui_gl_canvas "$1") && read -r _ _ w h < <(gui_geometry "$view") &&
+      ((4 * w * h >= ${geom% *} * ${geom#* })) && { echo "$view"; return 0; }
+    xdotool windowmove "$1" 0 0 windowsize "$1" ${geom% *} ${geom#* }
+    sleep 1
+  done
+  echo "the 3D view of window $1 stays small (${w:-0}x${h:-0})" >&2
+  return 1
+}
+
 # gui_orbit WIN DX DY: drags with the left button from the centre of WIN by
 # DX, DY pixels in small steps, as a hand would. MRPT's canvases turn the
 # camera by 0.2 deg per pixel: azimuth -= 0.2*DX, elevation += 0.2*DY.
@@ -120,11 +137,11 @@ gui_rawlog_select() {
 gui_rawlogviewer_3d() {
   local main
   main=$(gui_wait_window "RawlogViewer - Part") && gui_dismiss_tip && gui_fill_screen "$main" &&
-    gui_rawlog_select "$main" "$1" && view=$(gui_gl_canvas "$main") &&
+    gui_rawlog_select "$main" "$1" && view=$(gui_big_canvas "$main") &&
     gui_orbit "$view" "$2" "$3" && gui_zoom "$view" "$4"
 }
 # SceneViewer3D starts from the camera stored in the .3Dscene.
 gui_sceneviewer_3d() {
   local main
-  main=$(gui_wait_window "SceneViewer3D - Part") && gui_fill_screen "$main" && view=$(gui_gl_canvas "$main")
+  main=$(gui_wait_window "SceneViewer3D - Part") && gui_fill_screen "$main" && view=$(gui_big_canvas "$main")
 }
