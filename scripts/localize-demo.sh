@@ -9,7 +9,8 @@
 #   scripts/localize-demo.sh [--quick] [--check] [--tagmap BIN] [--out DIR]
 #     --quick   the robot LiDAR at 2 Hz instead of 10 (80 scans, not 400): the ctest
 #     --check   exit 1 unless the PF converged with translation RMSE <= 0.10 m and
-#               direct relocalization has translation RMSE <= 0.03 m
+#               direct relocalization has translation RMSE <= 0.03 m, and unless a
+#               second PF run (a new process, same seed) gives the same trajectory
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 tagmap="$here/build/bin/tagmap"
@@ -55,4 +56,9 @@ if [ $check = 1 ]; then
   awk -v p="$pf_rmse" -v c="$pf_conv" -v d="$direct_rmse" 'BEGIN {
     ok = (p != "null" && p + 0 <= 0.10 && c + 0 >= 0 && d != "null" && d + 0 <= 0.03);
     exit ok ? 0 : 1 }' || { echo "localize-demo: FAILED the accuracy check" >&2; exit 1; }
+  # Same rawlog, same seed: the same trajectory, in a new process.
+  run "$tagmap" localize --map "$out/tags.json" --rawlog "$out/robot/obs.rawlog" --method pf \
+    --out "$out/pf_again.tum" --quiet
+  cmp -s "$out/pf.tum" "$out/pf_again.tum" || { echo "localize-demo: FAILED: a second pf run differs" >&2; exit 1; }
+  echo "check: a second pf run gives the same trajectory"
 fi

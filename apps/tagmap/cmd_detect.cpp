@@ -100,9 +100,7 @@ int runDetect(int argc, char** argv)
 		if (!reportDir.empty()) report::checkReportDir(reportDir);
 		checkMrptOutputs(args);
 
-		report::ProgressParams pp;
-		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
-		report::ProgressPrinter progress(pp);
+		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("reading", 0, 0);
 
 		io::LoadReport load;

@@ -14,6 +14,7 @@
 #include "tagmap/localize/pf_localizer.h"
 #include "tagmap/io/rawlog_file.h"
 #include "tagmap/localize/trajectory_errors.h"
+#include "tagmap/report/progress_printer.h"
 #include "tagmap/tags_json.h"
 
 namespace tagmap::app
@@ -22,7 +23,7 @@ namespace
 {
 const char* kUsage =
 	"Usage: tagmap localize --map TAGS.json --rawlog OBS.rawlog --method pf|direct --out TRAJ.tum\n"
-	"                       [--truth TRUE.tum [--errors ERR.json]] [--particles N] [--seed N]\n"
+	"                       [--truth TRUE.tum [--errors ERR.json]] [--particles N] [--seed N] [--quiet]\n"
 	"Localizes the LiDAR of OBS.rawlog (written by `tagmap observe`) in the tag map TAGS.json\n"
 	"(a `tagmap detect` result) and writes the sensor poses as TUM lines.\n"
 	"  --method pf       MRPT's particle filter (CMonteCarloLocalization2D) on the tags as\n"
@@ -33,7 +34,8 @@ const char* kUsage =
 	"                    rmse_translation_m, rmse_rotation_deg, converged_at_step as JSON\n"
 	"  --errors ERR.json also write that JSON\n"
 	"  --particles N     particles of the global (uniform) phase (default 40000)\n"
-	"  --seed N          random seed of the particle filter (default 1)\n";
+	"  --seed N          random seed of the particle filter (default 1)\n"
+	"  --quiet           no progress and no summary line (the errors JSON is still printed)\n";
 
 }  // namespace
 
@@ -43,7 +45,7 @@ int runLocalize(int argc, char** argv)
 		const cli::Args a = cli::parse(argc, argv, 1,
 									   {"--map", "--rawlog", "--method", "--out", "--truth", "--errors", "--particles",
 										"--seed"},
-									   {"--help"});
+									   {"--quiet", "--help"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage;
@@ -69,20 +71,28 @@ int runLocalize(int argc, char** argv)
 		checkOutputWritable(a.get("--out"));
 		if (a.has("--errors")) checkOutputWritable(a.get("--errors"));
 
+		const bool quiet = a.has("--quiet");
+		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
+		progress.update("reading", 0, 0);
 		const auto steps = localize::localizationSteps(io::loadRawlog(a.get("--rawlog")), a.get("--rawlog"));
+		progress.update("reading", steps.size(), steps.size());
 		localize::Trajectory estimate;
 		std::string extra = "\"method\": \"" + method + "\", \"steps\": " + std::to_string(steps.size());
 		if (method == "pf")
 		{
-			const localize::PfResult r = localize::runParticleFilter(mapTags, steps, pf);
+			const localize::PfResult r = localize::runParticleFilter(
+				mapTags, steps, pf, [&](size_t done, size_t total) { progress.update("particle filter", done, total); });
 			estimate = r.trajectory;
 			extra += ", \"pf_converged_at_step\": " + std::to_string(r.convergedAtStep);
 		}
 		else
 			estimate = localize::runDirectLocalization(mapTags, steps).trajectory;
+		progress.update("writing", 0, 0);
 		localize::writeTum(a.get("--out"), estimate);
-		std::printf("%s: %zu steps, %zu poses -> %s\n", method.c_str(), steps.size(), estimate.size(),
-					a.get("--out").c_str());
+		progress.finish();
+		if (!quiet)
+				std::printf("%s: %zu steps, %zu poses -> %s\n", method.c_str(), steps.size(), estimate.size(),
+						a.get("--out").c_str());
 
 		if (a.has("--truth"))
 		{

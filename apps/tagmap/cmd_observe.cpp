@@ -56,9 +56,7 @@ int runObserve(int argc, char** argv)
 		const PipelineParams params = observeParams(a);
 		checkOutputWritable(out);
 		const bool quiet = a.has("--quiet");
-		report::ProgressParams pp;
-		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
-		report::ProgressPrinter progress(pp);
+		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("reading", 0, 0);
 		const mrpt::obs::CRawlog log = io::loadRawlog(in);
 		progress.update("reading", log.size(), log.size());

@@ -75,9 +75,7 @@ int runSimulate(int argc, char** argv)
 		// Fail on an unwritable output now, not after the simulation.
 		checkOutputWritable((std::filesystem::path(a.get("--out")) / "map.pcd").string());
 		const bool quiet = a.has("--quiet");
-		report::ProgressParams pp;
-		if (quiet) pp.style = report::ProgressParams::Style::Quiet;
-		report::ProgressPrinter progress(pp);
+		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("casting rays", 0, 0);
 		const sim::SimulationOutput out =
 			sim::simulate(scene, opt, [&](size_t done, size_t total) { progress.update("casting rays", done, total); });

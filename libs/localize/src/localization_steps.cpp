@@ -1,5 +1,6 @@
 #include "tagmap/localize/localization_steps.h"
 
+#include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include "tagmap/errors.h"
@@ -17,11 +18,13 @@ class StepBuilder
 		for (size_t i = 0; i < actions.size(); i++)
 			if (const auto* m = dynamic_cast<const mrpt::obs::CActionRobotMovement2D*>(&actions.get(i)))
 			{
-				mrpt::poses::CPose2D increment;
-				m->poseChange->getMean(increment);
+				// The raw reading when there is one: MRPT rebuilds poseChange
+				// when it loads a rawlog, and the Thrun model does it by drawing
+				// particles, so its mean differs from run to run.
+				mrpt::poses::CPose2D increment = m->rawOdometryIncrementReading;
+				if (m->estimationMethod != mrpt::obs::CActionRobotMovement2D::emOdometry)
+					m->poseChange->getMean(increment);
 				pending_ = pending_ + increment;
-				model_ = m->motionModelConfiguration;
-				moved_ = true;
 			}
 	}
 
@@ -37,15 +40,9 @@ class StepBuilder
 			// The ranges written with these tags (same stamp), else none.
 			s.ranges = ranges_ && ranges_->timestamp == t->timestamp ? ranges_
 																	   : mrpt::obs::CObservationBeaconRanges::Create();
-			if (moved_)
-			{
-				s.motion = mrpt::obs::CActionRobotMovement2D::Create();
-				s.motion->timestamp = t->timestamp;
-				s.motion->computeFromOdometry(pending_, model_);
-			}
+			s.odometry = pending_;
 			steps.push_back(s);
 			pending_ = mrpt::poses::CPose2D();
-			moved_ = false;
 			ranges_.reset();
 		}
 	}
@@ -54,8 +51,6 @@ class StepBuilder
 
    private:
 	mrpt::poses::CPose2D pending_;
-	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model_;
-	bool moved_ = false;
 	mrpt::obs::CObservationBeaconRanges::Ptr ranges_;
 };
 }  // namespace

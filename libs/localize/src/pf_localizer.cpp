@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "tagmap/mrpt/landmarks_map.h"
@@ -34,15 +35,13 @@ Bounds mapBounds(const std::vector<TagDetection>& tags, double margin)
 	return b;
 }
 
-/** The step's odometry under the filter's motion model, or no motion for
- *  the first step (the PF needs an action). */
+/** The step's odometry under the filter's motion model (a zero increment
+ *  when the robot did not move: the PF needs an action). */
 mrpt::obs::CActionCollection actionsOf(const LocalizationStep& s, const PfParams& params)
 {
-	mrpt::poses::CPose2D increment;
-	if (s.motion) s.motion->poseChange->getMean(increment);
 	mrpt::obs::CActionRobotMovement2D move;
 	move.timestamp = s.tags->timestamp;
-	move.computeFromOdometry(increment, params.motionModel);
+	move.computeFromOdometry(s.odometry, params.motionModel);
 	mrpt::obs::CActionCollection actions;
 	actions.insert(move);
 	return actions;
@@ -53,6 +52,35 @@ struct Spread
 	double position = 0;  // metres, the larger axis
 	double heading = 0;  // radians
 };
+
+/** Systematic resampling of the belief to `count` equally weighted
+ *  particles. MRPT 2.5's performResampling(options, count) is only right for
+ *  count == size(): with fewer it draws from the first count/size of the
+ *  weight CDF only, with more it reads past its own array (and hangs). */
+void resampleTo(mrpt::slam::CMonteCarloLocalization2D& pdf, size_t count)
+{
+	const size_t n = pdf.size();
+	double maxLogW = -std::numeric_limits<double>::infinity();
+	for (size_t i = 0; i < n; i++) maxLogW = std::max(maxLogW, pdf.getW(i));
+	std::vector<double> cdf(n);
+	double sum = 0;
+	for (size_t i = 0; i < n; i++)
+	{
+		// All weights -inf (no particle explains the ranges): treat as equal.
+		const double w = std::isfinite(maxLogW) ? std::exp(pdf.getW(i) - maxLogW) : 1.0;
+		cdf[i] = sum += std::isfinite(w) ? w : 0.0;
+	}
+	const double step = sum / static_cast<double>(count);
+	double u = mrpt::random::getRandomGenerator().drawUniform(0.0, step);
+	std::vector<size_t> picks(count);
+	for (size_t i = 0, j = 0; i < count; i++, u += step)
+	{
+		while (j + 1 < n && cdf[j] < u) j++;
+		picks[i] = j;
+	}
+	pdf.performSubstitution(picks);
+	for (size_t i = 0; i < count; i++) pdf.setW(i, 0);
+}
 
 Spread spreadOf(const mrpt::slam::CMonteCarloLocalization2D& pdf)
 {
@@ -77,7 +105,7 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions PfParams::defaultMotionMo
 }
 
 PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::vector<LocalizationStep>& steps,
-						   const PfParams& params)
+						   const PfParams& params, const StepProgress& progress)
 {
 	if (mapTags.empty()) throw std::invalid_argument("the tag map is empty");
 	auto map = std::make_shared<mrpt::maps::CLandmarksMap>(mrpt_bridge::tagsToLandmarksMap(mapTags));
@@ -113,7 +141,7 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 			spread.heading < params.convergedHeadingDeg * M_PI / 180)
 		{
 			r.convergedAtStep = static_cast<long>(k);
-			pdf.performResampling(pf.m_options, params.trackingParticles);
+			resampleTo(pdf, params.trackingParticles);
 		}
 		// Anneal: the likelihood is about as wide as the belief.
 		map->likelihoodOptions.beaconRangesStd =
@@ -126,6 +154,7 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 			(mrpt::poses::CPose3D(mean) + s.sensorPose).getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
 		r.trajectory.push_back(p);
 		r.spread.push_back(spread.position);
+		if (progress) progress(k + 1, steps.size());
 	}
 	return r;
 }

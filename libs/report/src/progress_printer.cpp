@@ -31,6 +31,13 @@ ProgressParams::Style resolveStyle(const ProgressParams& p)
 }
 }  // namespace
 
+ProgressParams ProgressParams::unlessQuiet(bool quiet)
+{
+	ProgressParams p;
+	if (quiet) p.style = Style::Quiet;
+	return p;
+}
+
 ProgressPrinter::ProgressPrinter(ProgressParams p) : p_(p), style_(resolveStyle(p))
 {
 	start_ = now();

@@ -3,12 +3,12 @@
 // saw of the tags.
 #pragma once
 
-#include <mrpt/obs/CActionRobotMovement2D.h>
 #include <mrpt/obs/CObservationBeaconRanges.h>
 #include <mrpt/obs/CRawlog.h>
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <functional>
 #include <vector>
 
 #include "tagmap/obs/CObservationTagPoses.h"
@@ -18,13 +18,20 @@ namespace tagmap::localize
 struct LocalizationStep
 {
 	double stamp = 0;  // seconds (the scan's time stamp)
-	/** Odometry since the previous step: every 2D movement in between
-	 *  composed, with the motion model of the last one. Null if none. */
-	mrpt::obs::CActionRobotMovement2D::Ptr motion;
+	/** Odometry since the previous step: the means of every 2D movement in
+	 *  between, composed (zero if none). Only the mean: the rawlog's motion
+	 *  model is not used (how much to trust odometry is a localizer setting),
+	 *  and the mean of a Thrun-model PDF is that of random samples, drawn
+	 *  again whenever MRPT loads the rawlog: runs would differ. */
+	mrpt::poses::CPose2D odometry;
 	mrpt::obs::CObservationBeaconRanges::Ptr ranges;  // never null (may hold no range)
 	obs::CObservationTagPoses::Ptr tags;  // never null (may hold no tag)
 	mrpt::poses::CPose3D sensorPose;  // the LiDAR on the robot
 };
+
+/** Called after each step (a scan observed, a filter update): steps done
+ *  so far, total steps. */
+using StepProgress = std::function<void(size_t done, size_t total)>;
 
 /** Throws InputError (naming `sourceName`) if the rawlog has no
  *  CObservationTagPoses at all, i.e. `tagmap observe` did not run on it. */

@@ -6,9 +6,8 @@
 
 #include <mrpt/obs/CRawlog.h>
 
-#include <functional>
-
 #include "tagmap/localize/beacon_ranges.h"
+#include "tagmap/localize/localization_steps.h"
 #include "tagmap/pipeline.h"
 
 namespace tagmap::localize
@@ -29,13 +28,10 @@ struct ObserveReport
 	double seconds = 0;
 };
 
-/** Called after each scan: scans done so far, total scans. */
-using ObserveProgress = std::function<void(size_t done, size_t total)>;
-
 /** Returns a copy of `in` with the tag observations added. Observations
  *  without intensity are passed through untouched. */
 mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& pipeline,
 								 const ObserveParams& params = {}, ObserveReport* report = nullptr,
-								 const ObserveProgress& progress = {});
+								 const StepProgress& progress = {});
 
 }  // namespace tagmap::localize

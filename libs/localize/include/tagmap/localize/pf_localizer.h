@@ -11,6 +11,8 @@
 // particle count drops to the tracking count.
 #pragma once
 
+#include <mrpt/obs/CActionRobotMovement2D.h>
+
 #include <cstdint>
 #include <vector>
 
@@ -46,6 +48,6 @@ struct PfResult
 };
 
 PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::vector<LocalizationStep>& steps,
-						   const PfParams& params = {});
+						   const PfParams& params = {}, const StepProgress& progress = {});
 
 }  // namespace tagmap::localize

@@ -37,6 +37,9 @@ struct ProgressParams
 	 *  stage reports nothing, so a long read never looks hung. */
 	double redrawSeconds = 0.1;
 	int barWidth = 28;
+
+	/** Auto, or Quiet for a command's --quiet. */
+	static ProgressParams unlessQuiet(bool quiet);
 };
 
 class ProgressPrinter
