@@ -60,8 +60,10 @@ int runLocalize(int argc, char** argv)
 		localize::PfParams pf;
 		const long particles = a.getInt("--particles", static_cast<long>(pf.globalParticles));
 		const long seed = a.getInt("--seed", pf.seed);
-		if (particles < 100) throw cli::UsageError("--particles must be >= 100");
-		if (seed < 0) throw cli::UsageError("--seed must be >= 0");
+		// 10^7 particles are ~1 GB and minutes per step: more is a typo.
+		if (particles < 100 || particles > 10000000)
+			throw cli::UsageError("--particles must be between 100 and 10000000");
+		if (seed < 0 || seed > 4294967295L) throw cli::UsageError("--seed must be between 0 and 4294967295");
 		pf.globalParticles = static_cast<size_t>(particles);
 		pf.seed = static_cast<uint32_t>(seed);
 

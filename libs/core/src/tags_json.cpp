@@ -95,15 +95,9 @@ void writeTagsJson(const std::string& path, const std::vector<TagDetection>& tag
 
 std::vector<TagDetection> readTagsJson(const std::string& path, const std::string& listKey)
 {
-	mrpt::containers::yaml doc;
-	try
-	{
-		doc = mrpt::containers::yaml::FromFile(path);
-	}
-	catch (const std::exception& e)
-	{
-		throw InputError(path, "", "not a readable JSON file: " + errorSummary(e.what()));
-	}
+	// readYamlFile, not yaml::FromFile: MRPT lets libfyaml print its parse
+	// errors on stderr (several lines for a binary file given as the map).
+	const mrpt::containers::yaml doc = readYamlFile(path);
 	if (!doc.isMap() || !doc.has(listKey) || !doc[listKey].isSequence())
 		throw InputError(path, "", "no \"" + listKey + "\" list");
 	std::vector<TagDetection> out;
