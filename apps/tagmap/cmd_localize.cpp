@@ -93,7 +93,7 @@ int runLocalize(int argc, char** argv)
 		localize::writeTum(a.get("--out"), estimate);
 		progress.finish();
 		if (!quiet)
-				std::printf("%s: %zu steps, %zu poses -> %s\n", method.c_str(), steps.size(), estimate.size(),
+			std::printf("%s: %zu steps, %zu poses -> %s\n", method.c_str(), steps.size(), estimate.size(),
 						a.get("--out").c_str());
 
 		if (a.has("--truth"))

@@ -27,6 +27,13 @@ gui_dismiss_tip() {
   ! xdotool search --onlyvisible --name "Tip of the Day" >/dev/null 2>&1
 }
 
+# gui_cover_screen WIN: asks for WIN at the top-left corner, screen-sized.
+gui_cover_screen() {
+  local geom
+  geom=$(xdotool getdisplaygeometry)
+  xdotool windowmove "$1" 0 0 windowsize "$1" ${geom% *} ${geom#* }
+}
+
 # gui_fill_screen WIN: moves WIN to the top-left corner and resizes it to the
 # whole screen (a window manager would have maximised it). Repeated until it
 # holds: an app still laying out its first frame may resize itself again.
@@ -34,7 +41,7 @@ gui_fill_screen() {
   local geom x y w h
   geom=$(xdotool getdisplaygeometry)
   for ((i = 0; i < 20; i++)); do
-    xdotool windowmove "$1" 0 0 windowsize "$1" ${geom% *} ${geom#* }
+    gui_cover_screen "$1"
     sleep 1
     read -r x y w h < <(gui_geometry "$1")
     [ "$x $y $w $h" = "0 0 $geom" ] && return 0
@@ -71,7 +78,7 @@ gui_big_canvas() {
   for ((i = 0; i < 20; i++)); do
     view=$(gui_gl_canvas "$1") && read -r _ _ w h < <(gui_geometry "$view") &&
       ((4 * w * h >= ${geom% *} * ${geom#* })) && { echo "$view"; return 0; }
-    xdotool windowmove "$1" 0 0 windowsize "$1" ${geom% *} ${geom#* }
+    gui_cover_screen "$1"
     sleep 1
   done
   echo "the 3D view of window $1 stays small (${w:-0}x${h:-0})" >&2

@@ -155,7 +155,7 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
 												  const VoxelGrid& grid, const IntensityGradientParams& p,
-												  unsigned threads, double spread, const GradientProgressFn& progress)
+												  unsigned threads, double spread, const CountProgressFn& progress)
 {
 	IntensityGradientResult out;
 	const size_t n = grid.pointCount();

@@ -23,7 +23,7 @@ class Observer
 {
    public:
 	Observer(const Pipeline& pipeline, const ObserveParams& params, ObserveReport& report, size_t total,
-			 const StepProgress& progress)
+			 const CountProgressFn& progress)
 		: pipeline_(pipeline), params_(params), report_(report), total_(total), progress_(progress)
 	{
 	}
@@ -59,7 +59,7 @@ class Observer
 	const ObserveParams& params_;
 	ObserveReport& report_;
 	size_t total_;
-	const StepProgress& progress_;
+	const CountProgressFn& progress_;
 };
 
 size_t countObservations(const mrpt::obs::CRawlog& in)
@@ -72,7 +72,7 @@ size_t countObservations(const mrpt::obs::CRawlog& in)
 }  // namespace
 
 mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& pipeline, const ObserveParams& params,
-								 ObserveReport* reportOut, const StepProgress& progress)
+								 ObserveReport* reportOut, const CountProgressFn& progress)
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	ObserveReport report;

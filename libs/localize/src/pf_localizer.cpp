@@ -105,7 +105,7 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions PfParams::defaultMotionMo
 }
 
 PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::vector<LocalizationStep>& steps,
-						   const PfParams& params, const StepProgress& progress)
+						   const PfParams& params, const CountProgressFn& progress)
 {
 	if (mapTags.empty()) throw std::invalid_argument("the tag map is empty");
 	auto map = std::make_shared<mrpt::maps::CLandmarksMap>(mrpt_bridge::tagsToLandmarksMap(mapTags));

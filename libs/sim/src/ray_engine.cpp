@@ -58,7 +58,7 @@ void castBlock(const Block& b, const Frame& f, const ScanRun& run, const SensorS
 }  // namespace
 
 EngineResult castFrames(const Scene& scene, const World& world, const std::vector<Frame>& frames,
-						const SimOptions& options, const SimProgressFn& progress)
+						const SimOptions& options, const CountProgressFn& progress)
 {
 	std::vector<SensorModels> models(scene.sensors.size());
 	for (size_t s = 0; s < scene.sensors.size(); s++)

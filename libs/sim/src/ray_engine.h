@@ -20,6 +20,6 @@ struct EngineResult
 };
 
 EngineResult castFrames(const Scene& scene, const World& world, const std::vector<Frame>& frames,
-						const SimOptions& options, const SimProgressFn& progress = {});
+						const SimOptions& options, const CountProgressFn& progress = {});
 
 }  // namespace tagmap::sim

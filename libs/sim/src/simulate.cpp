@@ -85,7 +85,7 @@ std::vector<TagDetection> truthAsMapped(const SimulationOutput& out, size_t firs
 }
 }  // namespace
 
-SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const SimProgressFn& progress)
+SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const CountProgressFn& progress)
 {
 	const auto start = std::chrono::steady_clock::now();
 	SimulationOutput out;

@@ -6,9 +6,9 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
+#include "tagmap/count_progress.h"
 #include "tagmap/voxel_grid.h"
 
 namespace tagmap
@@ -41,15 +41,13 @@ struct IntensityGradientResult
 	std::vector<uint32_t> sparsePoints;
 };
 
-/** Points examined so far and in all; called from the worker threads. */
-using GradientProgressFn = std::function<void(size_t done, size_t total)>;
-
 /** `grid` must have been built over the same points with cell = radius r.
- *  `spread`: the intensity spread to normalise by (0: measure it on these points). */
+ *  `spread`: the intensity spread to normalise by (0: measure it on these points).
+ *  `progress`: points examined so far and in all, from the worker threads. */
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
 												  const VoxelGrid& grid, const IntensityGradientParams& p,
 												  unsigned threads, double spread = 0,
-												  const GradientProgressFn& progress = {});
+												  const CountProgressFn& progress = {});
 
 /** Robust intensity range p95 - p5 (from a strided sample; deterministic). */
 double robustIntensitySpread(const float* is, size_t n);

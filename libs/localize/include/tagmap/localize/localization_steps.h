@@ -8,7 +8,6 @@
 #include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPose3D.h>
 
-#include <functional>
 #include <vector>
 
 #include "tagmap/obs/CObservationTagPoses.h"
@@ -28,10 +27,6 @@ struct LocalizationStep
 	obs::CObservationTagPoses::Ptr tags;  // never null (may hold no tag)
 	mrpt::poses::CPose3D sensorPose;  // the LiDAR on the robot
 };
-
-/** Called after each step (a scan observed, a filter update): steps done
- *  so far, total steps. */
-using StepProgress = std::function<void(size_t done, size_t total)>;
 
 /** Throws InputError (naming `sourceName`) if the rawlog has no
  *  CObservationTagPoses at all, i.e. `tagmap observe` did not run on it. */

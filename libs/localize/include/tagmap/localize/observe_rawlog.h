@@ -6,8 +6,8 @@
 
 #include <mrpt/obs/CRawlog.h>
 
+#include "tagmap/count_progress.h"
 #include "tagmap/localize/beacon_ranges.h"
-#include "tagmap/localize/localization_steps.h"
 #include "tagmap/pipeline.h"
 
 namespace tagmap::localize
@@ -29,9 +29,10 @@ struct ObserveReport
 };
 
 /** Returns a copy of `in` with the tag observations added. Observations
- *  without intensity are passed through untouched. */
+ *  without intensity are passed through untouched. `progress`: scans done
+ *  and in all, after each scan. */
 mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& pipeline,
 								 const ObserveParams& params = {}, ObserveReport* report = nullptr,
-								 const StepProgress& progress = {});
+								 const CountProgressFn& progress = {});
 
 }  // namespace tagmap::localize

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tagmap/count_progress.h"
 #include "tagmap/localize/localization_steps.h"
 #include "tagmap/localize/trajectory_tum.h"
 #include "tagmap/tag_detection.h"
@@ -47,7 +48,8 @@ struct PfResult
 	long convergedAtStep = -1;  // the filter's own verdict (no ground truth involved)
 };
 
+/** `progress`: steps done and in all, after each filter update. */
 PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::vector<LocalizationStep>& steps,
-						   const PfParams& params = {}, const StepProgress& progress = {});
+						   const PfParams& params = {}, const CountProgressFn& progress = {});
 
 }  // namespace tagmap::localize

@@ -11,10 +11,10 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
+#include "tagmap/count_progress.h"
 #include "tagmap/sim/scene.h"
 #include "tagmap/tag_detection.h"
 
@@ -76,10 +76,8 @@ struct SimulationOutput
 	double seconds = 0;
 };
 
-/** Rays cast so far of all the rays to cast; called from worker threads,
+/** `progress`: rays cast so far and in all; called from worker threads,
  *  serialized, with non-decreasing counts (a block of rays at a time). */
-using SimProgressFn = std::function<void(size_t raysDone, size_t raysTotal)>;
-
-SimulationOutput simulate(const Scene& scene, const SimOptions& options = {}, const SimProgressFn& progress = {});
+SimulationOutput simulate(const Scene& scene, const SimOptions& options = {}, const CountProgressFn& progress = {});
 
 }  // namespace tagmap::sim
