@@ -21,8 +21,11 @@ int runCompare(int argc, char** argv)
 						 "Matches tags by family, id and position (within half a tag size) and prints,\n"
 						 "per true tag, the position error per axis, the roll/pitch/yaw error, the\n"
 						 "largest corner error and whether the vertex order is right; then the\n"
-						 "numbers found, missed and falsely detected. Exit status 0 when every true\n"
-						 "tag was found with the right vertex order and nothing else was reported.\n"
+						 "numbers found, missed and falsely detected (a false report on a true tag's\n"
+						 "square is a wrong family/id, a second report of a found tag a duplicate).\n"
+						 "A true tag marked \"expected\": false need not be found. Exit status 0 when\n"
+						 "every required true tag was found with the right vertex order and nothing\n"
+						 "else was reported.\n"
 						 "\n"
 						 "  --in-map   compare with the truth's `tags_in_map` list (the simulator's tags\n"
 						 "             where the drifted map shows them), which separates the\n"
@@ -30,7 +33,9 @@ int runCompare(int argc, char** argv)
 			return 0;
 		}
 		if (args.positional.size() != 2) throw cli::UsageError("expected RESULT.json and TRUTH.json");
-		const Evaluation ev = evaluateDetections(readTagsJson(args.positional[0]), readTagsJson(args.positional[1], args.has("--in-map") ? "tags_in_map" : "tags"));
+		const std::string list = args.has("--in-map") ? "tags_in_map" : "tags";
+		const Evaluation ev = evaluateDetections(readTagsJson(args.positional[0]), readTagsJson(args.positional[1], list),
+												 readRequiredFlags(args.positional[1], list));
 		std::printf("%-16s %5s %6s %9s %9s %9s %8s %8s %8s %10s %6s\n", "family", "id", "found", "dx [m]", "dy [m]",
 					"dz [m]", "droll", "dpitch", "dyaw", "corner [m]", "order");
 		bool ok = true;
@@ -38,8 +43,8 @@ int runCompare(int argc, char** argv)
 		{
 			if (!e.found)
 			{
-				std::printf("%-16s %5d %6s\n", e.family.c_str(), e.id, "no");
-				ok = false;
+				std::printf("%-16s %5d %6s\n", e.family.c_str(), e.id, e.required ? "no" : "no (not required)");
+				ok = ok && !e.required;
 				continue;
 			}
 			ok = ok && e.vertexOrderCorrect;
@@ -48,11 +53,15 @@ int runCompare(int argc, char** argv)
 						e.rotationErrorDeg.y(), e.rotationErrorDeg.z(), e.maxCornerError,
 						e.vertexOrderCorrect ? "ok" : "WRONG");
 		}
-		for (const auto& f : ev.falseDetections)
-			std::printf("false detection: %s %d at (%.3f, %.3f, %.3f)\n", f.family.c_str(), f.id, f.position().x(),
-						f.position().y(), f.position().z());
-		std::printf("found %d of %zu, missed %d, false %d\n", ev.found(), ev.perTruth.size(), ev.missed(),
-					ev.falsePositives());
+		for (size_t k = 0; k < ev.falseDetections.size(); k++)
+		{
+			const TagDetection& f = ev.falseDetections[k];
+			std::printf("false detection (%s): %s %d at (%.3f, %.3f, %.3f), %.3f m\n", falseKindName(ev.falseKinds[k]),
+						f.family.c_str(), f.id, f.position().x(), f.position().y(), f.position().z(), f.size);
+		}
+		std::printf("found %d of %zu, missed %d, false %d (wrong family/id %d, duplicate %d)\n", ev.found(),
+					ev.perTruth.size(), ev.missed(), ev.falsePositives(), ev.falseOf(FalseKind::WrongId),
+					ev.falseOf(FalseKind::Duplicate));
 		return ok && ev.falsePositives() == 0 ? 0 : 1;
 	});
 }

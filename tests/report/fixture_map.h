@@ -14,7 +14,7 @@ inline mrpt::maps::CPointsMapXYZI makeReportFixtureMap(std::vector<TagDetection>
 	a.T_G_wall.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();  // vertical, faces -y
 	a.T_G_wall.translation() = Eigen::Vector3d(0, 2, 1);
 	b = a;
-	b.family = "aruco_4x4_50";
+	b.family = "aruco_6x6_250";
 	b.id = 3;
 	b.seed = 2;
 	b.T_G_wall.translation() = Eigen::Vector3d(1.0, 2, 1);

@@ -61,7 +61,7 @@ TEST(Report, WritesPageWithEveryImage)
 									   run().params});
 	const std::string html = readText(dir / "index.html");
 	EXPECT_NE(html.find("tag36h11"), std::string::npos);
-	EXPECT_NE(html.find("aruco_4x4_50"), std::string::npos);
+	EXPECT_NE(html.find("aruco_6x6_50"), std::string::npos);  // the smallest dictionary holding the id
 	EXPECT_NE(html.find("id=\"image-check\""), std::string::npos);
 
 	// Every <img> names a PNG that exists and decodes.

@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
+#include <functional>
 #include <random>
 
 #include "tagmap/candidate_filter.h"
 #include "tagmap/intensity_gradient.h"
 #include "tagmap/pattern_refinement.h"
+#include "tagmap/read_evidence.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_quads.h"
 
@@ -159,4 +161,101 @@ TEST(PatternRefinement, SquareAtTheEdgeOfItsPointsIsRejectedCleanly)
 	PatternRefinementParams p;
 	EXPECT_FALSE(refineWithPattern(t, plane, x.data(), y.data(), z.data(), i.data(), p));
 	EXPECT_LT(t.patternFit, p.minPatternFit);
+}
+
+namespace
+{
+// A tag's bitmap drawn at 12 px per cell into a grey image whose background
+// (outside the tag's own quiet zone) is `background`; the read has the
+// border square's corners in vertex order.
+struct DrawnRead
+{
+	cv::Mat img;
+	DecodedTag2D read;
+};
+
+DrawnRead drawTag(const std::string& family, int id, const std::function<uint8_t(int, int)>& background)
+{
+	const int px = 12, margin = 48;
+	const TagBitmap bm = renderTagBitmap(family, id);
+	DrawnRead d;
+	const int side = bm.cells * px + 2 * margin;
+	d.img = cv::Mat(side, side, CV_8U);
+	for (int r = 0; r < side; r++)
+		for (int c = 0; c < side; c++)
+		{
+			const int gr = (r - margin) / px, gc = (c - margin) / px;
+			const bool inGrid = r >= margin && c >= margin && gr < bm.cells && gc < bm.cells;
+			d.img.at<uint8_t>(r, c) = inGrid ? (bm.at(gr, gc) ? 230 : 25) : background(r, c);
+		}
+	d.read.family = family;
+	d.read.id = id;
+	const double a = margin + bm.borderStart * px, b = a + bm.borderCells * px;
+	d.read.corners = {Eigen::Vector2d(a, a), Eigen::Vector2d(b, a), Eigen::Vector2d(b, b), Eigen::Vector2d(a, b)};
+	return d;
+}
+const std::vector<std::string> kEveryFamily = searchFamilies(parseFamilyList(""));
+}  // namespace
+
+TEST(ReadEvidence, ChanceOfARandomMatch)
+{
+	// 587 codes x 8 orientations / 2^36 for an exact tag36h11 read.
+	EXPECT_NEAR(chanceMatchProbability(587, 36, 0, 8), 587 * 8 / 68719476736.0, 1e-12);
+	EXPECT_NEAR(chanceMatchProbability(587, 36, 2, 8), 587 * 8 * (1 + 36 + 630) / 68719476736.0, 1e-10);
+	// 1000 codes of 16 bits: one pattern in eight matches some code exactly.
+	EXPECT_NEAR(chanceMatchProbability(1000, 16, 0, 8), 0.122, 1e-3);
+}
+
+TEST(ReadEvidence, CleanStrongTagIsAcceptedOnAPlainWhiteWall)
+{
+	const DrawnRead d = drawTag("tag36h11", 7, [](int, int) { return uint8_t(220); });
+	const ReadEvidence e = assessRead(d.img, d.read, 8, kEveryFamily, {});
+	EXPECT_EQ(e.bitErrors, 0);
+	EXPECT_EQ(e.codeBits, 36);
+	EXPECT_EQ(e.rejection, "");
+}
+
+TEST(ReadEvidence, WeakFamilyIsChanceAmongEveryFamilyButNotAloneWithItsBudget)
+{
+	// An exact aruco_4x4_50 read: among every family, a random pattern does
+	// as well too often; asked for alone with a budget of 1 in 100 it passes.
+	const DrawnRead d = drawTag("aruco_4x4_50", 3, [](int, int) { return uint8_t(220); });
+	EXPECT_EQ(assessRead(d.img, d.read, 8, kEveryFamily, {}).rejection, "by_chance");
+	ReadEvidenceParams alone;
+	alone.chanceBudget = 0.01;
+	EXPECT_EQ(assessRead(d.img, d.read, 8, {"aruco_4x4_50"}, alone).rejection, "");
+}
+
+TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)
+{
+	// The 6x6 data cells of a tag36h11 hold black-bordered 4x4 squares that
+	// OpenCV would identify; whatever the 4x4 read, it is chance among
+	// every family, and the inner square has no quiet zone.
+	const DrawnRead tag = drawTag("tag36h11", 0, [](int, int) { return uint8_t(220); });
+	DecodedTag2D inner = tag.read;
+	inner.family = "aruco_4x4_1000";
+	inner.id = 0;
+	const Eigen::Vector2d c = 0.25 * (tag.read.corners[0] + tag.read.corners[1] + tag.read.corners[2] + tag.read.corners[3]);
+	for (auto& p : inner.corners) p = c + 0.75 * (p - c);  // 6 of the 8 border cells
+	EXPECT_NE(assessRead(tag.img, inner, 8, kEveryFamily, {}).rejection, "");
+}
+
+TEST(ReadEvidence, WindowGridHasNoQuietZone)
+{
+	// A tag-like square inside a grid of dark bars (windows on a facade):
+	// the bars continue through the white margin a printed tag has.
+	const DrawnRead d = drawTag("tag36h11", 7, [](int r, int c) { return uint8_t((r % 24 < 6 || c % 24 < 6) ? 25 : 220); });
+	DrawnRead grid = d;
+	// Bars across the quiet zone too.
+	const TagBitmap bm = renderTagBitmap("tag36h11", 7);
+	for (int r = 0; r < grid.img.rows; r++)
+		for (int c = 0; c < grid.img.cols; c++)
+		{
+			const int gr = (r - 48) / 12, gc = (c - 48) / 12;
+			const bool quiet = r >= 48 && c >= 48 && gr < bm.cells && gc < bm.cells &&
+							   (gr < bm.borderStart || gc < bm.borderStart || gr >= bm.borderStart + bm.borderCells ||
+								gc >= bm.borderStart + bm.borderCells);
+			if (quiet && (r % 24 < 6 || c % 24 < 6)) grid.img.at<uint8_t>(r, c) = 25;
+		}
+	EXPECT_EQ(assessRead(grid.img, grid.read, 8, kEveryFamily, {}).rejection, "no_quiet_zone");
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tagmap/tag_family.h"
+#include "tagmap/yaml_text.h"
 
 namespace tagmap
 {
@@ -12,15 +13,39 @@ int Evaluation::found() const
 	return static_cast<int>(std::count_if(perTruth.begin(), perTruth.end(), [](const TagError& e) { return e.found; }));
 }
 
-Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std::vector<TagDetection>& truth)
+int Evaluation::missed() const
+{
+	return static_cast<int>(
+		std::count_if(perTruth.begin(), perTruth.end(), [](const TagError& e) { return e.required && !e.found; }));
+}
+
+int Evaluation::falseOf(FalseKind kind) const
+{
+	return static_cast<int>(std::count(falseKinds.begin(), falseKinds.end(), kind));
+}
+
+const char* falseKindName(FalseKind kind)
+{
+	switch (kind)
+	{
+		case FalseKind::WrongId: return "wrong family/id";
+		case FalseKind::Duplicate: return "duplicate";
+		default: return "false tag";
+	}
+}
+
+Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std::vector<TagDetection>& truth,
+							  const std::vector<bool>& required)
 {
 	Evaluation ev;
 	std::vector<bool> used(found.size(), false);
-	for (const auto& t : truth)
+	for (size_t ti = 0; ti < truth.size(); ti++)
 	{
+		const TagDetection& t = truth[ti];
 		TagError e;
 		e.family = t.family;
 		e.id = t.id;
+		e.required = ti >= required.size() || required[ti];
 		for (size_t k = 0; k < found.size() && !e.found; k++)
 		{
 			const auto& d = found[k];
@@ -42,8 +67,30 @@ Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std:
 		ev.perTruth.push_back(e);
 	}
 	for (size_t k = 0; k < found.size(); k++)
-		if (!used[k]) ev.falseDetections.push_back(found[k]);
+	{
+		if (used[k]) continue;
+		const TagDetection& d = found[k];
+		FalseKind kind = FalseKind::Elsewhere;
+		for (const TagDetection& t : truth)
+			if ((d.position() - t.position()).norm() <= 0.5 * std::max(t.size, d.size))
+				kind = sameMarker(d.family, d.id, t.family, t.id) ? FalseKind::Duplicate : FalseKind::WrongId;
+		ev.falseDetections.push_back(d);
+		ev.falseKinds.push_back(kind);
+	}
 	return ev;
+}
+
+std::vector<bool> readRequiredFlags(const std::string& path, const std::string& listKey)
+{
+	const mrpt::containers::yaml doc = readYamlFile(path);
+	std::vector<bool> out;
+	if (!doc.isMap() || !doc.has(listKey) || !doc[listKey].isSequence()) return out;
+	for (const auto& node : doc[listKey].asSequence())
+	{
+		const mrpt::containers::yaml t = node;
+		out.push_back(!(t.isMap() && t.has("expected")) || yamlScalarAs<bool>(t["expected"]));
+	}
+	return out;
 }
 
 }  // namespace tagmap

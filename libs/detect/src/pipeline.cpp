@@ -14,6 +14,7 @@
 #include "tagmap/parallel.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/point_spacing.h"
+#include "tagmap/read_evidence.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_family.h"
@@ -222,8 +223,17 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	report("decode", 0, candidates.size());
 	StageTimer tDecode(out, "decode", candidates.size());
 	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
+	// What a read is judged against (read_evidence.h): the families
+	// searched and the orientations each quad was tried in.
+	const std::vector<std::string> searched =
+		searchFamilies(params_.families.empty() ? parseFamilyList("") : params_.families);
+	const int readOrientations = params_.decoder.tryMirrored ? 8 : 4;
 	std::mutex progressMutex;
 	size_t finished = 0;
+	auto sizeAsked = [&](double measured) {
+		return params_.tagSize > 0 ? std::abs(measured / params_.tagSize - 1) <= kGivenSizeTolerance
+								   : measured >= cf.minTagSize && measured <= cf.maxTagSize;
+	};
 	parallelForWorkers(candidates.size(), threads, [&](unsigned worker, size_t b, size_t e) {
 		const TagDecoder& decoder = decoderFor(worker);
 		for (size_t k = b; k < e; k++)
@@ -245,11 +255,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 			auto tryDecoded = [&](const DecodedTag2D& d) {
 				// A decode the size of a few points (a code read into text or
 				// a corner of a bigger pattern) is no tag of the sizes asked for.
-				const double measured = measuredTagSize(d, plane);
-				const bool sizeFits = params_.tagSize > 0
-										  ? std::abs(measured / params_.tagSize - 1) <= kGivenSizeTolerance
-										  : measured >= cf.minTagSize && measured <= cf.maxTagSize;
-				if (!sizeFits)
+				if (!sizeAsked(measuredTagSize(d, plane)))
 				{
 					if (rep.verdict != "decoded") rep.verdict = "size_mismatch";
 					return;
@@ -264,15 +270,29 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 					return;
 				}
 				refitTagPlane(t, plane, m.xs, m.ys, m.zs);
+				if (!sizeAsked(t.size))  // the refined size, too, must be one asked for
+				{
+					if (rep.verdict != "decoded") rep.verdict = "size_mismatch";
+					return;
+				}
 				rep.verdict = "decoded";
 				if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
 				perCandidate[k].push_back(std::move(t));
 			};
-			auto tryAll = [&](std::vector<DecodedTag2D> decoded, double scale) {
+			auto tryAll = [&](std::vector<DecodedTag2D> decoded, const cv::Mat& image, double scale) {
 				for (DecodedTag2D& d : decoded)
+				{
+					// Judged on the image it was read from, before anything costly.
+					const ReadEvidence ev = assessRead(image, d, readOrientations, searched, params_.evidence);
 					for (auto& c : d.corners) c *= scale;
-				if (keepImages) rep.decoded.insert(rep.decoded.end(), decoded.begin(), decoded.end());
-				for (const DecodedTag2D& d : decoded) tryDecoded(d);
+					if (keepImages) rep.decoded.push_back(d);
+					if (!ev.rejection.empty())
+					{
+						if (rep.verdict != "decoded") rep.verdict = ev.rejection;
+						continue;
+					}
+					tryDecoded(d);
+				}
 				return !perCandidate[k].empty();
 			};
 			// The raw image's quads serve its ArUco decode and the soft decoder.
@@ -280,10 +300,10 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 			bool found = false;
 			for (const ImageVariant& variant : makeImageVariants(plane.gray, params_.imageVariants))
 				if ((found = tryAll(decoder.decode(variant.gray, variant.gray.data == plane.gray.data ? &quads : nullptr),
-									variant.scale)))
+									variant.gray, variant.scale)))
 					break;
 			// Last resort for blurred tags: correlate quads with every code.
-			if (!found) tryAll(softDecoderFor(worker).decode(plane.gray, quads), 1.0);
+			if (!found) tryAll(softDecoderFor(worker).decode(plane.gray, quads), plane.gray, 1.0);
 			std::lock_guard<std::mutex> lock(progressMutex);
 			report("decode", ++finished, candidates.size());
 		}

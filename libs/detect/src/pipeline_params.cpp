@@ -88,6 +88,11 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		 {{"enabled", bind(p.softDecoder.enabled)},
 		  {"min_correlation", bind(p.softDecoder.minCorrelation)},
 		  {"min_gap", bind(p.softDecoder.minGap)}}},
+		{"evidence",
+		 {{"chance_budget", bind(p.evidence.chanceBudget)},
+		  {"erasure_band", bind(p.evidence.erasureBand)},
+		  {"max_border_error_rate", bind(p.evidence.maxBorderErrorRate)},
+		  {"max_quiet_error_rate", bind(p.evidence.maxQuietErrorRate)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -216,6 +221,12 @@ void PipelineParams::validate() const
 	for (const auto& v : imageVariants)
 		if (v != "raw" && v != "otsu" && v != "half")
 			throw std::invalid_argument("image_variants: unknown variant '" + v + "' (valid: raw, otsu, half)");
+	if (!(evidence.chanceBudget > 0 && evidence.chanceBudget <= 1))
+		throw std::invalid_argument("evidence.chance_budget must be in (0, 1]");
+	if (!(evidence.maxBorderErrorRate >= 0 && evidence.maxBorderErrorRate <= 1) ||
+		!(evidence.maxQuietErrorRate >= 0 && evidence.maxQuietErrorRate <= 1) ||
+		!(evidence.erasureBand >= 0 && evidence.erasureBand < 0.5))
+		throw std::invalid_argument("evidence.max_border_error_rate and max_quiet_error_rate must be in [0, 1], erasure_band in [0, 0.5)");
 	if (decoder.maxBitsCorrected < 0 || decoder.maxBitsCorrected > 3)
 		throw std::invalid_argument("decoder.max_bits_corrected must be 0..3");
 	// The rest, unchecked, would give silently empty results at best, and

@@ -107,6 +107,7 @@ struct TagDecoder::Impl
 					d.family = reportedFamily(requested, f.name, id);
 					if (d.family.empty()) continue;
 					d.id = id;
+					d.hamming = f.dictionary->getDistanceToId(read, id, true);
 					d.margin = 100;
 					d.mirrored = mirrored;
 					d.corners = orderedCorners(q, bestOrder(f.name, id, sample, threshold, mirrored));

@@ -19,19 +19,40 @@ struct TagError
 	Eigen::Vector3d rotationErrorDeg = Eigen::Vector3d::Zero();  // |roll|, |pitch|, |yaw| of R_true^T R_found
 	double maxCornerError = 0;  // metres
 	bool vertexOrderCorrect = false;  // every corner k nearest to true corner k
+	/** False when the truth marks the tag `expected: false` (too few points
+	 *  on it to decode): missing it is no error, finding it is no false tag. */
+	bool required = true;
+};
+
+/** Why a reported tag matches no true tag. */
+enum class FalseKind
+{
+	Elsewhere,  // where no true tag is: a tag made of clutter
+	WrongId,  // on a true tag's square, but another family or id
+	Duplicate,  // a second report of a true tag already matched
 };
 
 struct Evaluation
 {
 	std::vector<TagError> perTruth;  // one per ground-truth tag, in its order
 	std::vector<TagDetection> falseDetections;  // found but not in the truth
+	std::vector<FalseKind> falseKinds;  // one per falseDetections entry
 	int found() const;
-	int missed() const { return static_cast<int>(perTruth.size()) - found(); }
+	/** Required true tags not found. */
+	int missed() const;
 	int falsePositives() const { return static_cast<int>(falseDetections.size()); }
+	int falseOf(FalseKind kind) const;
 };
 
 /** A detection matches a true tag of the same marker (sameMarker()) whose
- *  centre is within half its size. */
-Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std::vector<TagDetection>& truth);
+ *  centre is within half its size. `required[k]` (default all true) says
+ *  whether truth[k] must be found. */
+Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std::vector<TagDetection>& truth,
+							  const std::vector<bool>& required = {});
+
+/** The `expected` flag of each tag in a truth file's list (true when absent). */
+std::vector<bool> readRequiredFlags(const std::string& path, const std::string& listKey = "tags");
+
+const char* falseKindName(FalseKind kind);
 
 }  // namespace tagmap

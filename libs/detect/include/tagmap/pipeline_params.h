@@ -15,6 +15,7 @@
 #include "tagmap/intermediate_plane.h"
 #include "tagmap/octree_gather.h"
 #include "tagmap/pattern_refinement.h"
+#include "tagmap/read_evidence.h"
 #include "tagmap/point_spacing.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
@@ -45,6 +46,7 @@ struct PipelineParams
 	IntermediatePlaneParams plane;
 	TagDecoderParams decoder;
 	SoftDecoderParams softDecoder;
+	ReadEvidenceParams evidence;
 	PatternRefinementParams refinement;
 
 	/** Reads the keys present in `y` over the defaults; throws

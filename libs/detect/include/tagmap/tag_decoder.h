@@ -29,7 +29,7 @@ struct DecodedTag2D
 	 *  upright pattern), already mapped back to the unmirrored image. */
 	std::array<Eigen::Vector2d, 4> corners;
 	double margin = 0;  // libapriltag decision margin; for ArUco a fixed 100
-	int hamming = 0;  // bits corrected (AprilTag only)
+	int hamming = 0;  // bits the decoder corrected; -1 for the soft decoder (no bit decision)
 	bool mirrored = false;  // found on the mirrored image
 };
 

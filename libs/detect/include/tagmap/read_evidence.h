@@ -1,0 +1,69 @@
+// Stage 5c: is a decoder's read a printed tag, or a pattern that happens to
+// match a code? Each read is checked against the family's whole printed
+// template, sampled cell by cell inside the decoded corners:
+//  - chance: the probability that a random pattern matches *some* code of
+//    the family, in any of its orientations, within the bits found wrong:
+//        P = codes x orientations x sum_{k <= wrong} C(n, k) / 2^n
+//    (n the code's bits, less those too grey to call). A read is accepted only when P is at most
+//    chanceBudget / (families searched): enabling more families does not
+//    let more false tags through, and a weak family (aruco_4x4_1000: 1000
+//    codes of 16 bits, P = 0.12 for an exact read) is never accepted on a
+//    pattern of unknown origin, however cleanly it reads.
+//  - border: the black border ring must read black, cell by cell;
+//  - quiet zone: the white margin around the tag must read white (a window
+//    grid, a checkerboard or a code read into part of a larger pattern
+//    continues there).
+// Thresholds come from the read itself (halfway between the cells the
+// template calls black and white), so no intensity scale is assumed.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "tagmap/tag_decoder.h"
+
+namespace tagmap
+{
+struct ReadEvidenceParams
+{
+	/** Largest chance-match probability of an accepted read, summed over
+	 *  the families searched (a Bonferroni bound). With ~10^4 quads read
+	 *  in a large cluttered map this allows ~0.1 false tags per map even if
+	 *  clutter were random bits; it is far less structured than that. */
+	double chanceBudget = 1e-3;
+	/** A code cell within this fraction of the black-white contrast of the
+	 *  threshold is an erasure: it neither counts as wrong nor as evidence
+	 *  (the chance is computed over the other cells). */
+	double erasureBand = 0.15;
+	/** Border-ring cells allowed to read white, as a fraction. */
+	double maxBorderErrorRate = 0.1;
+	/** Quiet-zone cells allowed to read dark, as a fraction. */
+	double maxQuietErrorRate = 0.15;
+};
+
+struct ReadEvidence
+{
+	int codeBits = 0;  // cells that differ between the family's codes
+	int bitErrors = 0;  // code cells read the other colour
+	int erasures = 0;  // code cells too close to the threshold to call
+	int borderErrors = 0, borderCells = 0;  // black ring cells read white
+	int quietErrors = 0, quietCells = 0;  // white margin cells read dark
+	double chance = 1;  // probability of a match this good by chance
+	/** "" when accepted, else "by_chance", "no_border" or "no_quiet_zone". */
+	std::string rejection;
+};
+
+/** The evidence of `read` on the image it was read from. `orientations`:
+ *  how many ways a quad was tried (4 rotations, x2 when both sides are
+ *  read); `searched`: the families the decoder searched (searchFamilies():
+ *  their number divides the budget, and a nested ArUco read counts the
+ *  codes of the dictionary actually searched). */
+ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
+						const std::vector<std::string>& searched, const ReadEvidenceParams& p);
+
+/** Probability that a uniformly random n-bit pattern lies within `wrong`
+ *  bits of one of `codes` codes in one of `orientations` orientations. */
+double chanceMatchProbability(int codes, int n, int wrong, int orientations);
+
+}  // namespace tagmap

@@ -1,0 +1,118 @@
+#include "tagmap/read_evidence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "tagmap/tag_family.h"
+
+namespace tagmap
+{
+namespace
+{
+/** Which cells of a family's grid carry the code (differ between ids) and
+ *  which are fixed black (border ring) or fixed white (quiet zone). */
+struct CellRoles
+{
+	std::vector<uint8_t> role;  // 0 code, 1 fixed black, 2 fixed white
+	int codeBits = 0;
+};
+
+const CellRoles& rolesOf(const std::string& family)
+{
+	static std::mutex mutex;
+	static std::map<std::string, std::unique_ptr<CellRoles>> cache;
+	std::lock_guard<std::mutex> lock(mutex);
+	auto& slot = cache[family];
+	if (slot) return *slot;
+	slot = std::make_unique<CellRoles>();
+	const TagFamilyInfo* info = findFamily(family);
+	const TagBitmap first = renderTagBitmap(family, 0);
+	std::vector<bool> varies(first.pixels.size(), false);
+	// Every code bit changes within the first few hundred ids of any family.
+	for (int id = 1; id < std::min(info->idCount, 256); id++)
+	{
+		const TagBitmap b = renderTagBitmap(family, id);
+		for (size_t k = 0; k < varies.size(); k++) varies[k] = varies[k] || b.pixels[k] != first.pixels[k];
+	}
+	slot->role.resize(varies.size());
+	for (size_t k = 0; k < varies.size(); k++)
+	{
+		slot->role[k] = varies[k] ? 0 : (first.pixels[k] ? 2 : 1);
+		slot->codeBits += varies[k];
+	}
+	return *slot;
+}
+}  // namespace
+
+double chanceMatchProbability(int codes, int n, int wrong, int orientations)
+{
+	// sum_{k<=wrong} C(n,k) / 2^n, in logs: n reaches 52 bits.
+	double ball = 0, binom = 1;
+	for (int k = 0; k <= wrong && k <= n; k++)
+	{
+		ball += binom;
+		binom = binom * (n - k) / (k + 1);
+	}
+	return std::min(1.0, static_cast<double>(codes) * orientations * ball * std::pow(2.0, -n));
+}
+
+ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
+						const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	ReadEvidence e;
+	const TagFamilyInfo* info = findFamily(read.family);
+	const TagBitmap bm = renderTagBitmap(read.family, read.id);
+	const CellRoles& roles = rolesOf(read.family);
+	e.codeBits = roles.codeBits;
+	e.rejection = "by_chance";
+	// Corners are in vertex order, so the samples come out upright.
+	const std::vector<float> sample = sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+	if (sample.empty() || !info) return e;
+	double black = 0, white = 0;
+	int nb = 0, nw = 0;
+	for (size_t k = 0; k < sample.size(); k++) (bm.pixels[k] ? white : black) += sample[k], (bm.pixels[k] ? nw : nb)++;
+	black /= std::max(nb, 1);
+	white /= std::max(nw, 1);
+	const double threshold = 0.5 * (black + white), unsure = p.erasureBand * (white - black);
+	for (size_t k = 0; k < sample.size(); k++)
+	{
+		const bool readWhite = sample[k] > threshold, isWhite = bm.pixels[k] != 0;
+		switch (roles.role[k])
+		{
+			case 0:
+				// A cell this close to the threshold (blur, a sparse cell) is
+				// no evidence either way: an erasure, not an error.
+				if (std::abs(sample[k] - threshold) < unsure) e.erasures++;
+				else e.bitErrors += readWhite != isWhite;
+				break;
+			case 1: e.borderCells++, e.borderErrors += readWhite; break;
+			default: e.quietCells++, e.quietErrors += !readWhite; break;
+		}
+	}
+	int codes = info->idCount;
+	for (const std::string& f : searched)
+		if (sameMarker(f, 0, read.family, 0)) codes = std::max(codes, findFamily(f)->idCount);
+	// A bit decoder's own count is the better one where it has it: it reads
+	// each cell from the edges it found, our samples from the cell middles.
+	// Erased cells match anything: only the others can tell a code from chance.
+	e.chance = chanceMatchProbability(codes, e.codeBits - e.erasures, e.bitErrors, orientations);
+	// A bit decoder's own count may be the better one: it reads each cell
+	// from the edges it found, our samples come from the cell middles.
+	if (read.hamming >= 0 && chanceMatchProbability(codes, e.codeBits, read.hamming, orientations) < e.chance)
+	{
+		e.bitErrors = read.hamming, e.erasures = 0;
+		e.chance = chanceMatchProbability(codes, e.codeBits, read.hamming, orientations);
+	}
+	if (e.chance > p.chanceBudget / static_cast<double>(std::max<size_t>(searched.size(), 1))) return e;
+	e.rejection = "no_border";
+	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells) return e;
+	e.rejection = "no_quiet_zone";
+	if (e.quietErrors > p.maxQuietErrorRate * e.quietCells) return e;
+	e.rejection.clear();
+	return e;
+}
+
+}  // namespace tagmap
