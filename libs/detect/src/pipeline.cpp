@@ -16,6 +16,7 @@
 #include "tagmap/point_spacing.h"
 #include "tagmap/read_evidence.h"
 #include "tagmap/soft_decoder.h"
+#include "tagmap/support_plane.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_pose.h"
@@ -230,6 +231,20 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	const int readOrientations = params_.decoder.tryMirrored ? 8 : 4;
 	std::mutex progressMutex;
 	size_t finished = 0;
+	// The tag's normal from the tag and the flat surface around it
+	// (support_plane.h): the points within reach, gathered afresh.
+	auto orientOnSupport = [&](TagDetection& t, double noise) {
+		if (!params_.supportPlane.enabled) return;
+		OrientedBox around;
+		around.center = t.position();
+		around.axes = t.pose.linear();
+		const double side = 2 * params_.supportPlane.reachSizes * t.size / params_.gather.enlarge;
+		// +-5 sigma of the plane's noise: a slab cut tighter about a plane
+		// still tilted would pull the fit towards that tilt.
+		const double h = 10 * noise;
+		around.extent = Eigen::Vector3d(side, side, h);
+		fitSupportPlane(t, gatherer.gather(around, spacing, m.xs, m.ys, m.zs), m.xs, m.ys, m.zs, params_.supportPlane);
+	};
 	auto sizeAsked = [&](double measured) {
 		return params_.tagSize > 0 ? std::abs(measured / params_.tagSize - 1) <= kGivenSizeTolerance
 								   : measured >= cf.minTagSize && measured <= cf.maxTagSize;
@@ -275,6 +290,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 					if (rep.verdict != "decoded") rep.verdict = "size_mismatch";
 					return;
 				}
+				orientOnSupport(t, plane.planeRms);
 				rep.verdict = "decoded";
 				if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
 				perCandidate[k].push_back(std::move(t));

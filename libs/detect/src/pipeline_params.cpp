@@ -93,6 +93,10 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"erasure_band", bind(p.evidence.erasureBand)},
 		  {"max_border_error_rate", bind(p.evidence.maxBorderErrorRate)},
 		  {"max_quiet_error_rate", bind(p.evidence.maxQuietErrorRate)}}},
+		{"support_plane",
+		 {{"enabled", bind(p.supportPlane.enabled)},
+		  {"reach_sizes", bind(p.supportPlane.reachSizes)},
+		  {"step_sigmas", bind(p.supportPlane.stepSigmas)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -227,6 +231,9 @@ void PipelineParams::validate() const
 		!(evidence.maxQuietErrorRate >= 0 && evidence.maxQuietErrorRate <= 1) ||
 		!(evidence.erasureBand >= 0 && evidence.erasureBand < 0.5))
 		throw std::invalid_argument("evidence.max_border_error_rate and max_quiet_error_rate must be in [0, 1], erasure_band in [0, 0.5)");
+	if (!(supportPlane.reachSizes >= 0.5 && supportPlane.reachSizes <= 2.5))
+		throw std::invalid_argument("support_plane.reach_sizes must be in [0.5, 2.5]");
+	positive(supportPlane.stepSigmas, "support_plane.step_sigmas");
 	if (decoder.maxBitsCorrected < 0 || decoder.maxBitsCorrected > 3)
 		throw std::invalid_argument("decoder.max_bits_corrected must be 0..3");
 	// The rest, unchecked, would give silently empty results at best, and

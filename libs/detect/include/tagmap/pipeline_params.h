@@ -18,6 +18,7 @@
 #include "tagmap/read_evidence.h"
 #include "tagmap/point_spacing.h"
 #include "tagmap/soft_decoder.h"
+#include "tagmap/support_plane.h"
 #include "tagmap/tag_decoder.h"
 
 namespace tagmap
@@ -48,6 +49,7 @@ struct PipelineParams
 	SoftDecoderParams softDecoder;
 	ReadEvidenceParams evidence;
 	PatternRefinementParams refinement;
+	SupportPlaneParams supportPlane;
 
 	/** Reads the keys present in `y` over the defaults; throws
 	 *  std::invalid_argument naming an unknown key or an invalid value. */
