@@ -75,6 +75,8 @@ void printStages(const Detections& found)
 	for (const auto& s : found.stages)
 		std::fprintf(stderr, "%-20s %9.3f %12zu %12zu\n", s.name.c_str(), s.seconds, s.itemsIn, s.itemsOut);
 	std::fprintf(stderr, "%-20s %9.3f\n", "total", found.totalSeconds);
+	std::fprintf(stderr, "measured: point spacing %.1f mm, surface noise %.1f mm\n", 1000 * found.pointSpacing,
+				 1000 * found.surfaceNoise);
 }
 }  // namespace
 

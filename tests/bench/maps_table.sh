@@ -30,7 +30,7 @@ for truth in "$dir"/*.gt.json; do
 	map=""
 	for ext in pcd ply las; do [ -f "$dir/$name.$ext" ] && map="$dir/$name.$ext" && break; done
 	[ -n "$map" ] || continue
-	if ! /usr/bin/time -v -o "$work/time" "$tagmap" detect "$map" --json "$work/$name.json" --quiet "$@" \
+	if ! /usr/bin/time -v -o "$work/time" "$tagmap" detect "$map" --json "$work/$name.json" "$@" \
 		>"$work/out" 2>"$work/err"; then
 		printf '%-26s detect failed: %s\n' "$name" "$(tail -1 "$work/err")"
 		continue

@@ -42,6 +42,22 @@ TEST(Config, DefaultYamlEqualsBuiltInDefaults)
 	EXPECT_EQ(yamlText(PipelineParams::fromYamlFile(kDefaultYaml)), yamlText(PipelineParams{}));
 }
 
+// `tagmap config --dump > my.yaml` must load back as it is (every family:
+// MRPT printed an empty list as nothing, which its parser rejected).
+TEST(Config, DumpLoadsBackAsItIs)
+{
+	PipelineParams some;
+	some.families = {"tag36h11", "aruco_4x4_50"};
+	for (const PipelineParams& p : {PipelineParams{}, some})
+	{
+		const std::string text = yamlText(p);
+		PipelineParams back;
+		ASSERT_NO_THROW(back = PipelineParams::fromYaml(mrpt::containers::yaml::FromText(text))) << text;
+		EXPECT_EQ(yamlText(back), text);
+		EXPECT_EQ(back.families, p.families);
+	}
+}
+
 TEST(Config, DefaultYamlHasEveryParameterWithAComment)
 {
 	const auto file = mrpt::containers::yaml::FromFile(kDefaultYaml);

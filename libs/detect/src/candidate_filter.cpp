@@ -7,7 +7,8 @@ namespace tagmap
 {
 std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p)
 {
-	const double l = box.extent.x(), w = box.extent.y(), h = box.extent.z();
+	const double l = box.extent.x(), w = box.extent.y();
+	const double h = box.thickness > 0 ? box.thickness : box.extent.z();
 	const double aMin = p.tagSize > 0 ? p.tagSize : p.minTagSize;
 	const double aMax = p.tagSize > 0 ? p.tagSize : p.maxTagSize;
 	// Paper's criterion 1 in the tag plane: a*sqrt(2) <= diag <= 2a; the

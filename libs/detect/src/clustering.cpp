@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "tagmap/point_stats.h"
@@ -42,14 +43,25 @@ OrientedBox fitOrientedBox(const float* xs, const float* ys, const float* zs, co
 	axes.col(1) = es.eigenvectors().col(1);
 	axes.col(2) = axes.col(0).cross(axes.col(1));
 	Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+	std::vector<double> heights;
+	heights.reserve(points.size());
 	for (uint32_t i : points)
 	{
 		const Eigen::Vector3d q = axes.transpose() * (Eigen::Vector3d(xs[i], ys[i], zs[i]) - mean);
 		lo = lo.cwiseMin(q);
 		hi = hi.cwiseMax(q);
+		heights.push_back(q.z());
 	}
 	box.axes = axes;
 	box.extent = hi - lo;
+	auto at = [&](double fraction) {
+		auto it = heights.begin() + static_cast<long>(fraction * static_cast<double>(heights.size() - 1));
+		std::nth_element(heights.begin(), it, heights.end());
+		return *it;
+	};
+	const double median = at(0.5);
+	for (double& z : heights) z = std::abs(z - median);
+	box.thickness = std::min(box.extent.z(), 2 * at(0.95));
 	box.center = mean + axes * (0.5 * (lo + hi));
 	return box;
 }

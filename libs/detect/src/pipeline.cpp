@@ -17,6 +17,7 @@
 #include "tagmap/read_evidence.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/support_plane.h"
+#include "tagmap/surface_noise.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_pose.h"
@@ -101,6 +102,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	StageTimer tSpacing(out, "point_spacing", m.n);
 	const double spacing = estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing, threads);
 	tSpacing.done(1);
+	out.pointSpacing = spacing;
 	if (!(spacing > 0)) return out;
 	const double radius = params_.gradientRadiusSpacings * spacing;
 
@@ -109,6 +111,14 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	const VoxelGrid grid(m.xs, m.ys, m.zs, m.n, radius, threads);
 	tGrid.done(grid.voxelCount());
 	report("neighbour_index", 1, 1);
+
+	StageTimer tNoise(out, "surface_noise", m.n);
+	const double surfaceNoise = estimateSurfaceNoise(m.xs, m.ys, m.zs, m.n, grid);
+	tNoise.done(1);
+	out.surfaceNoise = surfaceNoise;
+	// How far a flat surface's points may stray from its plane: the measured
+	// noise (3 sigma), at least two spacings (a noiseless map's own sampling).
+	const double planeNoise = std::max(2 * spacing, 3 * surfaceNoise);
 
 	// Clusters at several tolerances: the point spacing varies across a map
 	// (near and far views, overlapping passes), and a tag scanned more
@@ -186,7 +196,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	std::vector<Candidate> candidates;
 	for (size_t c = 0; c < clusters.size(); c++)
 	{
-		const std::string why = rejectCandidate(clusters[c].box, radius, 2 * spacing, cf);
+		const std::string why = rejectCandidate(clusters[c].box, radius, planeNoise, cf);
 		CandidateReport rep;
 		rep.center = clusters[c].box.center;
 		rep.extent = clusters[c].box.extent;
@@ -202,7 +212,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		const OrientedBox& b = clusters[c].box;
 		for (uint32_t i : clusters[c].points)
 			along.push_back((Eigen::Vector3d(m.xs[i], m.ys[i], m.zs[i]) - b.center).dot(b.axes.col(0)));
-		for (const OrientedBox& w : squareWindows(b, radius, 2 * spacing, cf, along))
+		for (const OrientedBox& w : squareWindows(b, radius, planeNoise, cf, along))
 		{
 			rep.center = w.center;
 			rep.extent = w.extent;

@@ -180,9 +180,16 @@ mrpt::containers::yaml PipelineParams::toYaml() const
 	PipelineParams copy = *this;
 	auto all = bindings(copy);
 	mrpt::containers::yaml y = mrpt::containers::yaml::Map();
-	mrpt::containers::yaml fams = mrpt::containers::yaml::Sequence();
-	for (const auto& f : families) fams.push_back(f);
-	y["families"] = fams;
+	// Every family is '' (a comma list), not []: MRPT prints an empty
+	// sequence as nothing at all, which its own parser then rejects.
+	if (families.empty())
+		y["families"] = std::string();
+	else
+	{
+		mrpt::containers::yaml fams = mrpt::containers::yaml::Sequence();
+		for (const auto& f : families) fams.push_back(f);
+		y["families"] = fams;
+	}
 	for (auto& [section, keys] : all)
 	{
 		mrpt::containers::yaml sub = mrpt::containers::yaml::Map();

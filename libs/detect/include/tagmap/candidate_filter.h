@@ -26,7 +26,8 @@ struct CandidateFilterParams
 	 *  and such a box still holds the tag. Decoding and the pattern check
 	 *  reject what is not a tag, so a generous bound costs only time. */
 	double maxOversize = 2.0;
-	/** Flatness: box height at most this fraction of its width (plus noise). */
+	/** Flatness: the box's robust height (OrientedBox::thickness) at most
+	 *  this fraction of its width, plus twice the noise allowance. */
 	double maxFlatness = 0.35;
 	/** Boxes rejected by squareness but at most this elongated are tried
 	 *  again as square windows along their length (squareWindows). */
@@ -35,7 +36,8 @@ struct CandidateFilterParams
 
 /** "" when the box may hold a tag, else the reason: "size", "squareness" or
  *  "not_flat". `band` is how far the kept edge points reach beyond the tag
- *  border (the gradient radius), `noise` the expected thickness of a plane. */
+ *  border (the gradient radius), `noise` how far a flat surface's points
+ *  stray from its plane (from the map's measured surface noise). */
 std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
 
 /** Square boxes of `box`'s width, half-overlapping along its length, for a

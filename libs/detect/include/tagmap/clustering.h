@@ -26,6 +26,11 @@ struct OrientedBox
 	Eigen::Vector3d center = Eigen::Vector3d::Zero();
 	Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns: length, width, height directions
 	Eigen::Vector3d extent = Eigen::Vector3d::Zero();  // l >= w >= h (full edge lengths)
+	/** Robust height: twice the 95th percentile of the points' distances
+	 *  from their median along the height axis (0: not measured). The
+	 *  extreme points that set extent.z() grow with the number of points
+	 *  under range noise (about +-3.7 sigma for 1000 points); this does not. */
+	double thickness = 0;
 };
 
 struct Cluster

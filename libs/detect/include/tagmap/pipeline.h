@@ -55,6 +55,9 @@ struct Detections
 	std::vector<StageReport> stages;
 	std::vector<CandidateReport> candidates;
 	double totalSeconds = 0;
+	// What the map measured, that every length and tolerance derives from:
+	double pointSpacing = 0;  // metres, median nearest-neighbour distance
+	double surfaceNoise = 0;  // metres, median plane-fit RMS of neighbourhoods
 };
 
 /** Progress callback: stage name, items done, items total. */
