@@ -5,7 +5,7 @@
 # defaults (every family, any size) plus any extra arguments, scores it with
 # `tagmap compare`, and prints one row per map: points, wall seconds, peak
 # memory, required tags found, false tags by kind, and for maps with tags the
-# mean position and roll/pitch/yaw errors.
+# mean position and roll/pitch/yaw errors; below a row, its false and missed tags.
 #
 #   tests/bench/maps_table.sh DIR [--tagmap build/bin/tagmap] [-- detect args...]
 #
@@ -37,7 +37,8 @@ for truth in "$dir"/*.gt.json; do
 	fi
 	wall=$(awk -F': ' '/Elapsed \(wall clock\)/{n=split($2,a,":"); s=0; for(i=1;i<=n;i++) s=s*60+a[i]; printf "%.2f", s}' "$work/time")
 	mb=$(awk -F': ' '/Maximum resident/{printf "%.0f", $2/1024}' "$work/time")
-	points=$(grep -oE 'read [0-9]+ points' "$work/out" "$work/err" 2>/dev/null | head -1 | grep -oE '[0-9]+' || echo "?")
+	points=$(cat "$work/out" "$work/err" | grep -oE 'read [0-9]+ points' | head -1 | grep -oE '[0-9]+' || true)
+	points=${points:-?}
 	"$tagmap" compare "$work/$name.json" "$truth" >"$work/cmp" 2>&1 || true
 	summary=$(grep -E '^found ' "$work/cmp" | tail -1)
 	found=$(echo "$summary" | awk '{print $2}')
@@ -51,6 +52,7 @@ for truth in "$dir"/*.gt.json; do
 	printf '%-26s %9s %7s %7s %6s %5s %5s %5s %5s %s\n' "$name" "$points" "$wall" "$mb" "$found/$total" \
 		"$((false - wrong - dup))" "$wrong" "$dup" "$missed" "$errs"
 	grep -E '^false detection' "$work/cmp" | sed 's/^/    /' || true
+	awk '$3=="no"{printf "    missed %s %s\n", $1, $2}' "$work/cmp" || true
 	tot_found=$((tot_found + found)) tot_req=$((tot_req + total)) tot_false=$((tot_false + false - wrong - dup))
 	tot_wrong=$((tot_wrong + wrong)) tot_dup=$((tot_dup + dup))
 	[ "$points" != "?" ] && tot_pts=$((tot_pts + points))

@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# Detection under physics nobody tuned to: N scenes, each drawing its own
+# sensor (a stationary Livox-like rosette or a walking 32/64-beam spinner),
+# range noise 0.5-3 cm, beam divergence, intensity model (gain, incidence
+# and range fall-off, noise), ink and paper albedo, boards, and 3-5 tag-like
+# distractors (checkerboards, random-block posters, text, stripes) beside
+# 2-3 tags of the strong families, at 3-7 m. Every family on, no size given.
+# Prints the physics drawn per scene, then maps_table.sh's table (found,
+# false / wrong / duplicate, position and angle errors, seconds, memory).
+#
+#   tests/bench/random_scenes.sh N OUT_DIR [--tagmap BIN] [--first SEED] [-- detect args...]
+#
+# A benchmark, not a test: it prints numbers and exits 0 even when tags are
+# missed. The seeds make every scene reproducible (--first picks the range).
+set -euo pipefail
+
+n=${1:?usage: random_scenes.sh N OUT_DIR [--tagmap BIN] [--first SEED] [-- detect args...]}
+out=${2:?usage: random_scenes.sh N OUT_DIR [--tagmap BIN] [--first SEED] [-- detect args...]}
+shift 2
+here=$(cd "$(dirname "$0")" && pwd)
+tagmap="$here/../../build/bin/tagmap"
+first=1
+while [ $# -gt 0 ] && [ "$1" != -- ]; do
+	case $1 in
+	--tagmap) tagmap=$2; shift 2 ;;
+	--first) first=$2; shift 2 ;;
+	*) echo "random_scenes: unknown option $1" >&2; exit 2 ;;
+	esac
+done
+[ "${1:-}" = -- ] && shift
+[ -x "$tagmap" ] || { echo "random_scenes: no tagmap binary at $tagmap" >&2; exit 2; }
+mkdir -p "$out/scenes" "$out/maps"
+
+# One scene's YAML from its seed; the drawn physics go to stderr as one line.
+draw_scene() {
+	awk -v seed="$1" '
+	function u(a, b) { return a + (b - a) * rand() }
+	function pick(n) { return int(n * rand()) }
+	BEGIN {
+		srand(seed)
+		split("tag36h11 tagStandard41h12 tag25h9 tagStandard52h13 tagCircle49h12 aruco_6x6_250 aruco_7x7_100", fam, " ")
+		nfam = 7
+		d = u(3, 7); livox = rand() < 0.5
+		noise = u(0.005, 0.03); div = u(0.3, 3.0)
+		gain = u(0.5, 2.0); inc = u(0.3, 2.0); fall = u(0, 2); inoise = u(0.005, 0.05)
+		# Slots on the wall facing the sensor: within the rosette field of view
+		# (38 deg) for the Livox, along the whole walk for the spinner.
+		half = livox ? d * 0.35 - 0.45 : 3.0
+		nslots = 0
+		for (y = -half; y <= half + 1e-9; y += 0.9) for (z = 0.9; z <= 2.2; z += 0.8) { sy[nslots] = y; sz[nslots] = z; nslots++ }
+		for (k = 0; k < nslots; k++) used[k] = 0
+		print "name: random_" seed
+		print "objects:"
+		printf "  - {name: floor, type: plane, position: [%.2f, 0, 0], normal: [0, 0, 1], size: [%.1f, 12], reflectivity: %.2f}\n", d / 2, d + 4, u(0.1, 0.4)
+		printf "  - {name: wall, type: plane, position: [%.3f, 0, 1.5], normal: [-1, 0, 0], size: [12, 3], reflectivity: %.2f}\n", d, u(0.3, 0.8)
+		print "tags:"
+		ntags = 2 + pick(2); tags = ""
+		for (t = 0; t < ntags; t++) {
+			do { k = pick(nslots) } while (used[k]); used[k] = 1
+			f = fam[1 + pick(nfam)]; size = u(0.16, 0.45)
+			id = pick(f == "tag25h9" ? 35 : f == "aruco_7x7_100" ? 100 : 200)
+			line = sprintf("  - {family: %s, id: %d, size: %.3f, position: [%.3f, %.3f, %.3f], normal: [-1, 0, 0], jitter_deg: 4, black: %.2f, white: %.2f",
+				f, id, size, d, sy[k], sz[k], u(0.02, 0.15), u(0.55, 0.95))
+			if (rand() < 0.4) line = line sprintf(", board: {size: [%.3f, %.3f], standoff: %.3f, reflectivity: %.2f}", size * 1.6, size * 1.8, u(0.003, 0.02), u(0.3, 0.9))
+			print line "}"
+			tags = tags " " f ":" id
+		}
+		print "distractors:"
+		kinds[0] = "checkerboard"; kinds[1] = "random_blocks"; kinds[2] = "text"; kinds[3] = "stripes"
+		nd = 3 + pick(3)
+		for (t = 0; t < nd; t++) {
+			free = 0; for (k = 0; k < nslots; k++) free += !used[k]
+			if (!free) break
+			do { k = pick(nslots) } while (used[k]); used[k] = 1
+			kind = kinds[pick(4)]; w = u(0.25, 0.6); cell = w / (4 + pick(6))
+			printf "  - {name: d%d, type: %s, position: [%.4f, %.3f, %.3f], normal: [-1, 0, 0], size: [%.3f, %.3f], cell: %.4f, seed: %d}\n",
+				t, kind, d - 0.0001, sy[k], sz[k], w, w * u(0.8, 1.1), cell, seed * 10 + t
+		}
+		print "sensors:"
+		intensity = sprintf("intensity: {gain: %.2f, incidence_exponent: %.2f, range_falloff_exponent: %.2f, noise: %.3f}", gain, inc, fall, inoise)
+		if (livox) printf "  - {name: s, type: livox_mid40, range_noise: %.4f, beam: {divergence_mrad: %.2f}, %s}\n", noise, div, intensity
+		else printf "  - {name: s, type: spinning, beams: %d, vertical_fov_deg: [-22.5, 22.5], columns: 1024, rev_per_second: 10, range_noise: %.4f, beam: {divergence_mrad: %.2f}, %s}\n", (rand() < 0.5 ? 32 : 64), noise, div, intensity
+		print "runs:"
+		if (livox) printf "  - {name: still, sensor: s, waypoints: [{position: [0, 0, 1.4], look_at: [%.3f, 0, 1.4]}], duration: %.1f}\n", d, u(1.0, 3.0)
+		else {
+			print "  - name: walk"
+			print "    sensor: s"
+			print "    waypoints:"
+			printf "      - {t: 0, position: [%.2f, -3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5)
+			printf "      - {t: 4, position: [%.2f, 3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5)
+		}
+		printf "%-10s %-8s %5.1f m  noise %4.1f mm  beam %4.2f mrad  gain %4.2f  incidence^%4.2f  range^%4.2f  I-noise %5.3f  tags%s\n",
+			"random_" seed, livox ? "livox" : "spinning", d, 1000 * noise, div, gain, inc, fall, inoise, tags > "/dev/stderr"
+	}'
+}
+
+echo "scene      sensor   wall     physics drawn"
+for ((s = first; s < first + n; s++)); do
+	name=$(printf 'random_%03d' "$s")
+	draw_scene "$s" >"$out/scenes/$name.yaml" 2>"$out/scenes/$name.physics"
+	cat "$out/scenes/$name.physics"
+	if ! "$tagmap" simulate "$out/scenes/$name.yaml" --out "$out/work_$name" --seed "$s" --quiet 2>"$out/scenes/$name.err"; then
+		echo "    simulate failed: $(tail -1 "$out/scenes/$name.err")"
+		continue
+	fi
+	mv "$out/work_$name/map.pcd" "$out/maps/$name.pcd"
+	mv "$out/work_$name/ground_truth.json" "$out/maps/$name.gt.json"
+	rm -rf "$out/work_$name"
+done
+echo
+bash "$here/maps_table.sh" "$out/maps" --tagmap "$tagmap" -- "$@"
