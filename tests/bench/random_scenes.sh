@@ -4,7 +4,7 @@
 # range noise 0.5-3 cm, beam divergence, intensity model (gain, incidence
 # and range fall-off, noise), ink and paper albedo, boards, and 3-5 tag-like
 # distractors (checkerboards, random-block posters, text, stripes) beside
-# 2-3 tags of the strong families, at 3-7 m. Every family on, no size given.
+# 2-3 tags of the strong families, at 3-7 m (spinner) or 4.5-8 m (Livox). Every family on, no size given.
 # Prints the physics drawn per scene, then maps_table.sh's table (found,
 # false / wrong / duplicate, position and angle errors, seconds, memory).
 #
@@ -40,39 +40,42 @@ draw_scene() {
 		srand(seed)
 		split("tag36h11 tagStandard41h12 tag25h9 tagStandard52h13 tagCircle49h12 aruco_6x6_250 aruco_7x7_100", fam, " ")
 		nfam = 7
-		d = u(3, 7); livox = rand() < 0.5
+		livox = rand() < 0.5; d = livox ? u(4.5, 8) : u(3, 7)
 		noise = u(0.005, 0.03); div = u(0.3, 3.0)
 		gain = u(0.5, 2.0); inc = u(0.3, 2.0); fall = u(0, 2); inoise = u(0.005, 0.05)
 		# Slots on the wall facing the sensor: within the rosette field of view
 		# (38 deg) for the Livox, along the whole walk for the spinner.
-		half = livox ? d * 0.35 - 0.45 : 3.0
+		# A slot holds an item up to 1.2 m across (the board of a 0.35 m tag).
 		nslots = 0
-		for (y = -half; y <= half + 1e-9; y += 0.9) for (z = 0.9; z <= 2.2; z += 0.8) { sy[nslots] = y; sz[nslots] = z; nslots++ }
+		for (y = -2.4; y <= 2.4 + 1e-9; y += 1.2) for (z = 1.0; z <= 1.8 + 1e-9; z += 0.8)
+			if (!livox || sqrt(y * y + (z - 1.4) ^ 2) + 0.6 <= d * 0.33) { sy[nslots] = y; sz[nslots] = z; nslots++ }
 		for (k = 0; k < nslots; k++) used[k] = 0
 		print "name: random_" seed
 		print "objects:"
 		printf "  - {name: floor, type: plane, position: [%.2f, 0, 0], normal: [0, 0, 1], size: [%.1f, 12], reflectivity: %.2f}\n", d / 2, d + 4, u(0.1, 0.4)
 		printf "  - {name: wall, type: plane, position: [%.3f, 0, 1.5], normal: [-1, 0, 0], size: [12, 3], reflectivity: %.2f}\n", d, u(0.3, 0.8)
 		print "tags:"
-		ntags = 2 + pick(2); tags = ""
+		ntags = 2 + pick(2); if (ntags > nslots) ntags = nslots; tags = ""
 		for (t = 0; t < ntags; t++) {
 			do { k = pick(nslots) } while (used[k]); used[k] = 1
-			f = fam[1 + pick(nfam)]; size = u(0.16, 0.45)
+			f = fam[1 + pick(nfam)]; size = u(0.16, 0.35)
 			id = pick(f == "tag25h9" ? 35 : f == "aruco_7x7_100" ? 100 : 200)
 			line = sprintf("  - {family: %s, id: %d, size: %.3f, position: [%.3f, %.3f, %.3f], normal: [-1, 0, 0], jitter_deg: 4, black: %.2f, white: %.2f",
 				f, id, size, d, sy[k], sz[k], u(0.02, 0.15), u(0.55, 0.95))
-			if (rand() < 0.4) line = line sprintf(", board: {size: [%.3f, %.3f], standoff: %.3f, reflectivity: %.2f}", size * 1.6, size * 1.8, u(0.003, 0.02), u(0.3, 0.9))
+			# A board holds the whole printed sheet: families with data outside
+			# the black border (tagStandard*, tagCircle*) print up to 2.6x it.
+			if (rand() < 0.4) line = line sprintf(", board: {size: [%.3f, %.3f], standoff: %.3f, reflectivity: %.2f}", size * 3.0, size * 3.2, u(0.003, 0.02), u(0.3, 0.9))
 			print line "}"
 			tags = tags " " f ":" id
 		}
-		print "distractors:"
 		kinds[0] = "checkerboard"; kinds[1] = "random_blocks"; kinds[2] = "text"; kinds[3] = "stripes"
 		nd = 3 + pick(3)
 		for (t = 0; t < nd; t++) {
 			free = 0; for (k = 0; k < nslots; k++) free += !used[k]
 			if (!free) break
 			do { k = pick(nslots) } while (used[k]); used[k] = 1
-			kind = kinds[pick(4)]; w = u(0.25, 0.6); cell = w / (4 + pick(6))
+			kind = kinds[pick(4)]; w = u(0.25, 0.9); cell = w / (4 + pick(6))
+			if (!t) print "distractors:"
 			printf "  - {name: d%d, type: %s, position: [%.4f, %.3f, %.3f], normal: [-1, 0, 0], size: [%.3f, %.3f], cell: %.4f, seed: %d}\n",
 				t, kind, d - 0.0001, sy[k], sz[k], w, w * u(0.8, 1.1), cell, seed * 10 + t
 		}
