@@ -33,7 +33,7 @@ std::string usage()
 		   "\n"
 		   "\n"
 		   "Options:\n"
-		   "  --json OUT         result file (CONVENTIONS.md schema), written atomically (required)\n"
+		   "  --json OUT         result file (docs/RESULT_FORMAT.md), written atomically (required)\n"
 		   "  --report DIR       also write DIR/index.html: the map with the tags marked, every\n"
 		   "                     candidate's image and why it was rejected, timings (default: none)\n"
 		   "  --landmarks F      mrpt::maps::CLandmarksMap, one beacon per tag (.gz MRPT serialization)\n"

@@ -4,9 +4,16 @@
 
 #include <mrpt/serialization/CArchive.h>
 
+#include <mrpt/core/initializer.h>
+
+#include "tagmap/maps/register_classes.h"
 #include "tagmap/tags_json.h"
 
 IMPLEMENTS_SERIALIZABLE(CTagMap, mrpt::maps::CMetricMap, tagmap::maps)
+
+// A program that links CTagMap can read it (and CObservationTagPoses) back by
+// name and load "tagMap" from ini files, without calling anything first.
+MRPT_INITIALIZER(tagmap_register_classes_with_CTagMap) { tagmap::maps::registerClasses(); }
 
 namespace tagmap::maps
 {

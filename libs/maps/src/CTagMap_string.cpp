@@ -1,5 +1,5 @@
 // CTagMap::asString(): the table RawLogViewer and friends print for a map.
-// Angles in degrees, since this text is for people (CONVENTIONS.md).
+// Angles in degrees, since this text is for people (docs/RESULT_FORMAT.md).
 #include <mrpt/core/format.h>
 
 #include <cmath>

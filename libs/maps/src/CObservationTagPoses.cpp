@@ -4,9 +4,15 @@
 
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/math/matrix_serialization.h>
+#include <mrpt/core/initializer.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include "tagmap/maps/register_classes.h"
+
 IMPLEMENTS_SERIALIZABLE(CObservationTagPoses, mrpt::obs::CObservation, tagmap::obs)
+
+// Linking the observation class is enough to read rawlogs that hold it.
+MRPT_INITIALIZER(tagmap_register_classes_with_CObservationTagPoses) { tagmap::maps::registerClasses(); }
 
 namespace tagmap::obs
 {

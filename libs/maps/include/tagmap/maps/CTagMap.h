@@ -1,7 +1,8 @@
 // tagmap::maps::CTagMap: a map of fiducial tags as a first-class MRPT metric
-// map. It lives in the tagmap MRPT plugin (libtagmap_mrpt_plugin.so); loading
-// the plugin (RawLogViewer -l, dlopen, or linking it) registers the class for
-// deserialization and the name "tagMap" for [MetricMap] ini files.
+// map. It lives in tagmap_maps (libs/maps); linking it registers the class
+// for deserialization and the name "tagMap" for [MetricMap] ini files
+// (register_classes.h). MRPT's own apps get it by loading the plugin
+// (RawLogViewer -l libtagmap_mrpt_plugin.so).
 //
 //  - insertObservation(): LiDAR observations with intensity accumulate points;
 //    tags are detected on demand (tags()) by tagmap::Pipeline.
@@ -49,7 +50,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 
 	// CMetricMap
 	bool isEmpty() const override;
-	/** Writes <prefix>_tags.json (CONVENTIONS result schema). */
+	/** Writes <prefix>_tags.json (docs/RESULT_FORMAT.md). */
 	void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
 	// Visualizable
 	void getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const override;
