@@ -14,6 +14,7 @@
 #include "tagmap/pipeline.h"
 #include "tagmap/report/progress_printer.h"
 #include "tagmap/report/report_writer.h"
+#include "tagmap/tag_table.h"
 #include "tagmap/tags_json.h"
 
 namespace tagmap::app
@@ -58,15 +59,9 @@ std::string joinArgs(int argc, char** argv)
 
 void printTable(const Detections& found)
 {
-	std::printf("%-16s %5s %7s %28s %24s %7s\n", "family", "id", "size", "position x y z [m]",
-				"roll pitch yaw [deg]", "points");
-	for (const auto& t : found.tags)
-	{
-		const Eigen::Vector3d p = t.position();
-		const Eigen::Vector3d rpy = rollPitchYaw(t.pose.linear()) * 180.0 / M_PI;
-		std::printf("%-16s %5d %7.3f %9.3f %9.3f %9.3f %8.2f %7.2f %7.2f %7d\n", t.family.c_str(), t.id, t.size, p.x(),
-					p.y(), p.z(), rpy.x(), rpy.y(), rpy.z(), t.pointsUsed);
-	}
+	TagTableColumns columns;
+	columns.points = true;
+	std::fputs(tagTable(found.tags, columns).c_str(), stdout);
 }
 
 void printStages(const Detections& found)

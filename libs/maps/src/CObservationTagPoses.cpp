@@ -8,6 +8,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include "tagmap/maps/register_classes.h"
+#include "tagmap/maps/tag_detection_archive.h"
 
 IMPLEMENTS_SERIALIZABLE(CObservationTagPoses, mrpt::obs::CObservation, tagmap::obs)
 
@@ -24,42 +25,50 @@ const TagDetection* CObservationTagPoses::find(const std::string& family, int id
 }
 
 // ---- serialization ---------------------------------------------------------
-// Version 0: label, stamp, sensor pose, then per tag: family, id, size, pose
-// (CPose3D), covariance (6x6), points used, decode margin, pattern fit,
-// mirrored. Corners are not stored: they follow from pose and size. Bump the
-// version and keep reading old ones when the layout changes.
-uint8_t CObservationTagPoses::serializeGetVersion() const { return 0; }
+// Version 1: label, stamp, sensor pose, tags (tag_detection_archive.h, with
+// its own version byte; corners stored as detected).
+// Version 0 (tagmap 0.1): label, stamp, sensor pose, then per tag: family,
+// id, size, pose (CPose3D), covariance (6x6), points used, decode margin,
+// pattern fit, mirrored; corners recomputed from pose and size.
+uint8_t CObservationTagPoses::serializeGetVersion() const { return 1; }
 
 void CObservationTagPoses::serializeTo(mrpt::serialization::CArchive& out) const
 {
-	out << sensorLabel << timestamp << sensorPose << static_cast<uint32_t>(tags.size());
-	for (const TagDetection& t : tags)
-	{
-		out << t.family << static_cast<int32_t>(t.id) << t.size;
-		out << mrpt::poses::CPose3D(mrpt::math::CMatrixDouble44(t.pose.matrix()));
-		out << mrpt::math::CMatrixDouble66(t.covariance);
-		out << static_cast<int32_t>(t.pointsUsed) << t.decodeMargin << t.patternFit << t.mirrored;
-	}
+	out << sensorLabel << timestamp << sensorPose;
+	maps::writeTagDetections(out, tags);
 }
+
+namespace
+{
+TagDetection readVersion0Tag(mrpt::serialization::CArchive& in)
+{
+	TagDetection t;
+	int32_t id = 0, pointsUsed = 0;
+	mrpt::poses::CPose3D pose;
+	mrpt::math::CMatrixDouble66 cov;
+	in >> t.family >> id >> t.size >> pose >> cov >> pointsUsed >> t.decodeMargin >> t.patternFit >> t.mirrored;
+	t.id = id;
+	t.pointsUsed = pointsUsed;
+	t.pose.matrix() = pose.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
+	t.covariance = cov.asEigen();
+	t.corners = cornersFromPose(t.pose, t.size);
+	return t;
+}
+}  // namespace
 
 void CObservationTagPoses::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-	if (version != 0) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
-	uint32_t n = 0;
-	in >> sensorLabel >> timestamp >> sensorPose >> n;
-	tags.assign(n, TagDetection{});
-	for (TagDetection& t : tags)
+	if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+	in >> sensorLabel >> timestamp >> sensorPose;
+	if (version == 1)
 	{
-		int32_t id = 0, pointsUsed = 0;
-		mrpt::poses::CPose3D pose;
-		mrpt::math::CMatrixDouble66 cov;
-		in >> t.family >> id >> t.size >> pose >> cov >> pointsUsed >> t.decodeMargin >> t.patternFit >> t.mirrored;
-		t.id = id;
-		t.pointsUsed = pointsUsed;
-		t.pose.matrix() = pose.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen();
-		t.covariance = cov.asEigen();
-		t.corners = cornersFromPose(t.pose, t.size);
+		tags = maps::readTagDetections(in);
+		return;
 	}
+	uint32_t n = 0;
+	in >> n;
+	tags.clear();
+	for (uint32_t i = 0; i < n; i++) tags.push_back(readVersion0Tag(in));
 }
 
 }  // namespace tagmap::obs

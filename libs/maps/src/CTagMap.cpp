@@ -7,6 +7,7 @@
 #include <mrpt/core/initializer.h>
 
 #include "tagmap/maps/register_classes.h"
+#include "tagmap/maps/tag_detection_archive.h"
 #include "tagmap/tags_json.h"
 
 IMPLEMENTS_SERIALIZABLE(CTagMap, mrpt::maps::CMetricMap, tagmap::maps)
@@ -50,42 +51,11 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 }
 
 // ---- serialization ---------------------------------------------------------
-// Version 0: options, tags (every TagDetection field), points, stale flag.
-// Bump the version and keep reading old ones when the layout changes.
-namespace
-{
-void writeTag(mrpt::serialization::CArchive& out, const TagDetection& t)
-{
-	out << t.family << static_cast<int32_t>(t.id) << t.size;
-	for (const auto& c : t.corners) out << c.x() << c.y() << c.z();
-	const Eigen::Matrix4d T = t.pose.matrix();
-	for (int r = 0; r < 3; r++)
-		for (int c = 0; c < 4; c++) out << T(r, c);
-	for (int r = 0; r < 6; r++)
-		for (int c = 0; c < 6; c++) out << t.covariance(r, c);
-	out << static_cast<int32_t>(t.pointsUsed) << t.decodeMargin << t.patternFit << t.mirrored;
-}
-
-TagDetection readTag(mrpt::serialization::CArchive& in)
-{
-	TagDetection t;
-	int32_t id = 0, pointsUsed = 0;
-	in >> t.family >> id >> t.size;
-	t.id = id;
-	for (auto& c : t.corners) in >> c.x() >> c.y() >> c.z();
-	Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-	for (int r = 0; r < 3; r++)
-		for (int c = 0; c < 4; c++) in >> T(r, c);
-	t.pose.matrix() = T;
-	for (int r = 0; r < 6; r++)
-		for (int c = 0; c < 6; c++) in >> t.covariance(r, c);
-	in >> pointsUsed >> t.decodeMargin >> t.patternFit >> t.mirrored;
-	t.pointsUsed = pointsUsed;
-	return t;
-}
-}  // namespace
-
-uint8_t CTagMap::serializeGetVersion() const { return 0; }
+// Version 1: options, generic map params, tags (tag_detection_archive.h, with
+// its own version byte), points, stale flag.
+// Version 0 (tagmap 0.1): the same with the tags as a bare count and layout-0
+// tags (the layout tag_detection_archive.h took over).
+uint8_t CTagMap::serializeGetVersion() const { return 1; }
 
 void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -93,31 +63,27 @@ void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 	out << likelihoodOptions.beaconRangesStd << likelihoodOptions.beaconRangesUseObservationStd;
 	out << visualOptions.showPoints << visualOptions.showLabels << visualOptions.showAxes << visualOptions.pointSize;
 	out << genericMapParams;
-	out << static_cast<uint32_t>(m_tags.size());
-	for (const auto& t : m_tags) writeTag(out, t);
+	writeTagDetections(out, m_tags);
 	out << m_points << m_tagsStale;
 }
 
 void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-	switch (version)
+	if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+	in >> detectionOptions.families >> detectionOptions.tagSize >> detectionOptions.configFile;
+	in >> likelihoodOptions.beaconRangesStd >> likelihoodOptions.beaconRangesUseObservationStd;
+	in >> visualOptions.showPoints >> visualOptions.showLabels >> visualOptions.showAxes >> visualOptions.pointSize;
+	in >> genericMapParams;
+	if (version == 0)
 	{
-		case 0:
-		{
-			in >> detectionOptions.families >> detectionOptions.tagSize >> detectionOptions.configFile;
-			in >> likelihoodOptions.beaconRangesStd >> likelihoodOptions.beaconRangesUseObservationStd;
-			in >> visualOptions.showPoints >> visualOptions.showLabels >> visualOptions.showAxes >>
-				visualOptions.pointSize;
-			in >> genericMapParams;
-			uint32_t n = 0;
-			in >> n;
-			m_tags.clear();
-			for (uint32_t i = 0; i < n; i++) m_tags.push_back(readTag(in));
-			in >> m_points >> m_tagsStale;
-		}
-		break;
-		default: MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+		uint32_t n = 0;
+		in >> n;
+		m_tags.clear();
+		for (uint32_t i = 0; i < n; i++) m_tags.push_back(readTagDetection(in, 0));
 	}
+	else
+		m_tags = readTagDetections(in);
+	in >> m_points >> m_tagsStale;
 }
 
 }  // namespace tagmap::maps
