@@ -87,7 +87,10 @@ int runDetect(int argc, char** argv)
 		if (args.positional.size() != 1) throw cli::UsageError("expected exactly one INPUT file");
 		if (!args.has("--json")) throw cli::UsageError("--json OUT is required");
 		const std::string input = args.positional[0], jsonPath = args.get("--json"), reportDir = args.get("--report");
-		const PipelineParams params = pipelineParamsFromArgs(args);
+		DetectionUsed used;
+		used.choices = detectionChoicesFromArgs(args);
+		used.params = resolveDetectionSettings(used.choices);
+		const PipelineParams& params = used.params;
 		const bool quiet = args.has("--quiet"), verbose = args.has("--verbose");
 
 		// Fail on an unwritable output now, not after minutes of work.
@@ -126,7 +129,7 @@ int runDetect(int argc, char** argv)
 			}
 		}();
 		writeTagsJson(jsonPath, found.tags);
-		writeMrptOutputs(args, map, found);
+		writeMrptOutputs(args, used, map, found);
 		if (!reportDir.empty())
 		{
 			progress.update("report", 0, 0);

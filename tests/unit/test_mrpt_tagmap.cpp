@@ -42,8 +42,9 @@ TEST(MrptTagMap, SerializationRoundTrip)
 {
 	const auto tags = mrpt_test::syntheticTags();
 	maps::CTagMap m;
-	m.detectionOptions.families = "tag36h11";
-	m.detectionOptions.tagSize = 0.5;
+	m.detectionParams.families = {"tag36h11"};
+	m.detectionParams.tagSize = 0.5;
+	m.detectionParams.gradient.threshold = 0.1234567890123;  // every digit must survive the YAML text
 	m.likelihoodOptions.beaconRangesStd = 0.123;
 	m.visualOptions.showPoints = false;
 	m.setPoints(mrpt_test::syntheticWallMap(tags));
@@ -59,8 +60,9 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	expectSameTags(back->tags(), tags);
 	EXPECT_EQ(back->points().size(), m.points().size());
 	EXPECT_EQ(back->points().getPointsBufferRef_intensity(), m.points().getPointsBufferRef_intensity());
-	EXPECT_EQ(back->detectionOptions.families, "tag36h11");
-	EXPECT_EQ(back->detectionOptions.tagSize, 0.5);
+	EXPECT_EQ(back->detectionParams.families, std::vector<std::string>{"tag36h11"});
+	EXPECT_EQ(back->detectionParams.tagSize, 0.5);
+	EXPECT_EQ(back->detectionParams.gradient.threshold, 0.1234567890123);
 	EXPECT_EQ(back->likelihoodOptions.beaconRangesStd, 0.123);
 	EXPECT_FALSE(back->visualOptions.showPoints);
 }
@@ -120,6 +122,9 @@ TEST(MrptTagMap, ReadsVersion0)
 	m.serializeFrom(in, 0);
 	expectSameTags(m.tags(), tags);
 	EXPECT_EQ(m.likelihoodOptions.beaconRangesStd, 0.2);
+	// The stored choices are resolved; my.yaml is not here, so defaults + choices.
+	EXPECT_EQ(m.detectionParams.families, std::vector<std::string>{"tag36h11"});
+	EXPECT_EQ(m.detectionParams.tagSize, 0.5);
 	EXPECT_EQ(m.visualOptions.pointSize, 3.0);
 }
 

@@ -2,10 +2,14 @@
 // larger behaviours each have their own file (CTagMap_*.cpp).
 #include "tagmap/maps/CTagMap.h"
 
+#include <mrpt/core/initializer.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include <mrpt/core/initializer.h>
+#include <iostream>
+#include <sstream>
 
+#include "tagmap/detection_settings.h"
+#include "tagmap/errors.h"
 #include "tagmap/maps/register_classes.h"
 #include "tagmap/maps/tag_detection_archive.h"
 #include "tagmap/tags_json.h"
@@ -51,15 +55,48 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 }
 
 // ---- serialization ---------------------------------------------------------
-// Version 1: options, generic map params, tags (tag_detection_archive.h, with
-// its own version byte), points, stale flag.
-// Version 0 (tagmap 0.1): the same with the tags as a bare count and layout-0
+// Version 2: the resolved detection settings (PipelineParams as the YAML of
+// `tagmap config --dump`, which names every key, so a later version with more
+// keys still reads it), likelihood and visual options, generic map params,
+// tags (tag_detection_archive.h, with its own version byte), points, stale flag.
+// Version 1: as 2, but the detection choices (families, tag size, config
+// file path) instead of the settings.
+// Version 0 (tagmap 0.1): as 1, with the tags as a bare count and layout-0
 // tags (the layout tag_detection_archive.h took over).
-uint8_t CTagMap::serializeGetVersion() const { return 1; }
+uint8_t CTagMap::serializeGetVersion() const { return 2; }
+
+namespace
+{
+std::string paramsText(const PipelineParams& p)
+{
+	std::ostringstream s;
+	p.toYaml().printAsYAML(s);
+	return s.str();
+}
+
+/** Versions 0 and 1 stored the choices; the settings they give are resolved
+ *  here. A config file that is not on this machine (the map came from
+ *  elsewhere) falls back to the built-in defaults with the other choices:
+ *  the stored tags are unaffected, only a re-detection would differ. */
+PipelineParams resolveStoredChoices(const DetectionChoices& c)
+{
+	try
+	{
+		return resolveDetectionSettings(c);
+	}
+	catch (const InputError& e)
+	{
+		std::cerr << "CTagMap: " << e.what() << "; re-detection uses the built-in defaults\n";
+		DetectionChoices withoutFile = c;
+		withoutFile.configFile.clear();
+		return resolveDetectionSettings(withoutFile);
+	}
+}
+}  // namespace
 
 void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
-	out << detectionOptions.families << detectionOptions.tagSize << detectionOptions.configFile;
+	out << paramsText(detectionParams);
 	out << likelihoodOptions.beaconRangesStd << likelihoodOptions.beaconRangesUseObservationStd;
 	out << visualOptions.showPoints << visualOptions.showLabels << visualOptions.showAxes << visualOptions.pointSize;
 	out << genericMapParams;
@@ -69,8 +106,19 @@ void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 
 void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-	if (version > 1) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
-	in >> detectionOptions.families >> detectionOptions.tagSize >> detectionOptions.configFile;
+	if (version > 2) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+	if (version >= 2)
+	{
+		std::string yaml;
+		in >> yaml;
+		detectionParams = PipelineParams::fromYaml(mrpt::containers::yaml::FromText(yaml));
+	}
+	else
+	{
+		DetectionChoices c;
+		in >> c.families >> c.tagSize >> c.configFile;
+		detectionParams = resolveStoredChoices(c);
+	}
 	in >> likelihoodOptions.beaconRangesStd >> likelihoodOptions.beaconRangesUseObservationStd;
 	in >> visualOptions.showPoints >> visualOptions.showLabels >> visualOptions.showAxes >> visualOptions.pointSize;
 	in >> genericMapParams;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "tagmap/maps/tag_map_options.h"
+#include "tagmap/pipeline_params.h"
 #include "tagmap/tag_detection.h"
 
 namespace tagmap::maps
@@ -30,7 +31,10 @@ class CTagMap : public mrpt::maps::CMetricMap
    public:
 	CTagMap() = default;
 
-	TTagDetectionOptions detectionOptions;
+	/** The detection settings tags() re-detects with, resolved when the map
+	 *  was made (resolveDetectionSettings: defaults, config file, choices) and
+	 *  stored whole, so the map detects the same way on any machine. */
+	PipelineParams detectionParams;
 	TTagLikelihoodOptions likelihoodOptions;
 	TTagVisualOptions visualOptions;
 
@@ -59,7 +63,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 
 	MAP_DEFINITION_START(CTagMap)
 	std::vector<TagDetection> initialTags;  // "<prefix>_creationOpts": tag_count, tag_%03u_* (tagmap/mrpt/tags_ini.h)
-	TTagDetectionOptions detectionOpts;  // "<prefix>_detectionOpts"
+	TTagDetectionOptions detectionOpts;  // "<prefix>_detectionOpts", resolved into detectionParams
 	TTagLikelihoodOptions likelihoodOpts;  // "<prefix>_likelihoodOpts"
 	TTagVisualOptions visualOpts;  // "<prefix>_visualOpts"
 	MAP_DEFINITION_END(CTagMap)
