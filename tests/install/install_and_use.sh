@@ -2,7 +2,8 @@
 # Installs the build tree into a temporary prefix, checks the layout, builds
 # tests/install/ against it with find_package(tagmap) (and pkg-config), then
 # simulates a small map with the installed command and detects its tags with
-# the external program.
+# the external program; and a stock MRPT app reads the installed command's
+# CTagMap with the installed plugin.
 # Usage: install_and_use.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail
 build=$1 src=$2 work=$3
@@ -32,3 +33,14 @@ cmake --build "$work/user" >"$work/build.log" 2>&1 || { tail -30 "$work/build.lo
 "$work/user/detect_tags" "$work/sim/map.pcd" | tee "$work/detect.txt"
 grep -q "^tag36h11 3$" "$work/detect.txt"
 grep -q "CTagMap registered" "$work/detect.txt"
+
+# The installed plugin, loaded by a stock MRPT app, reads the installed
+# command's CTagMap (what the README tells users to do).
+if command -v rawlog-edit >/dev/null; then
+  "$prefix/bin/tagmap" detect "$work/sim/map.pcd" --quiet --json "$work/tags.json" --tagmap "$work/tags.tagmap"
+  rawlog-edit -p "$prefix/lib/tagmap/libtagmap_mrpt_plugin.so" --info -i "$work/tags.tagmap" </dev/null \
+    >"$work/rawlog-edit.txt" 2>&1
+  grep -Eq "Overall number of objects +: 1$" "$work/rawlog-edit.txt" ||
+    { echo "rawlog-edit with the installed plugin cannot read the CTagMap:"; cat "$work/rawlog-edit.txt"; exit 1; }
+  echo "rawlog-edit -p <installed plugin> reads the installed command's CTagMap"
+fi
