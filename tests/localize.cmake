@@ -3,7 +3,7 @@
 # asserting the particle filter converges and tracks within 0.10 m.
 tagmap_test(test_localize
   SOURCES unit/test_localize.cpp unit/test_localize_single_scan.cpp
-  LIBS tagmap_localize tagmap_sim tagmap_mrpt_plugin)
+  LIBS tagmap_localize tagmap_sim tagmap_maps)
 
 add_test(NAME localize_e2e
   COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/localize-demo.sh --quick --check

@@ -4,12 +4,12 @@ tagmap_test(test_mrpt
   SOURCES unit/test_mrpt_beacon_id.cpp unit/test_mrpt_landmarks.cpp unit/test_mrpt_tagmap.cpp
           unit/test_mrpt_ini.cpp unit/test_mrpt_likelihood.cpp unit/test_mrpt_rawlog.cpp unit/test_mrpt_scene.cpp
           mrpt/synthetic_tags.cpp
-  LIBS tagmap_mrpt tagmap_mrpt_plugin tagmap_io)
+  LIBS tagmap_mrpt tagmap_maps tagmap_io)
 target_compile_definitions(test_mrpt PRIVATE TAGMAP_PLUGIN_PATH="$<TARGET_FILE:tagmap_mrpt_plugin>")
 
 add_executable(tagmap_mrpt_fixture mrpt/make_fixture.cpp mrpt/synthetic_tags.cpp
   ${PROJECT_SOURCE_DIR}/apps/tagmap/detect_outputs.cpp ${PROJECT_SOURCE_DIR}/apps/tagmap/cli.cpp)
-target_link_libraries(tagmap_mrpt_fixture PRIVATE tagmap_mrpt tagmap_mrpt_plugin tagmap_detect tagmap_localize)
+target_link_libraries(tagmap_mrpt_fixture PRIVATE tagmap_mrpt tagmap_maps tagmap_detect tagmap_localize)
 tagmap_warnings(tagmap_mrpt_fixture)
 
 set(TAGMAP_MRPT_ARTIFACTS ${PROJECT_BINARY_DIR}/test-artifacts/mrpt)

@@ -14,6 +14,7 @@
 #include "tagmap/pipeline.h"
 #include "tagmap/report/progress_printer.h"
 #include "tagmap/report/report_writer.h"
+#include "tagmap/tag_table.h"
 #include "tagmap/tags_json.h"
 
 namespace tagmap::app
@@ -33,7 +34,7 @@ std::string usage()
 		   "\n"
 		   "\n"
 		   "Options:\n"
-		   "  --json OUT         result file (CONVENTIONS.md schema), written atomically (required)\n"
+		   "  --json OUT         result file (docs/RESULT_FORMAT.md), written atomically (required)\n"
 		   "  --report DIR       also write DIR/index.html: the map with the tags marked, every\n"
 		   "                     candidate's image and why it was rejected, timings (default: none)\n"
 		   "  --landmarks F      mrpt::maps::CLandmarksMap, one beacon per tag (.gz MRPT serialization)\n"
@@ -58,15 +59,9 @@ std::string joinArgs(int argc, char** argv)
 
 void printTable(const Detections& found)
 {
-	std::printf("%-16s %5s %7s %28s %24s %7s\n", "family", "id", "size", "position x y z [m]",
-				"roll pitch yaw [deg]", "points");
-	for (const auto& t : found.tags)
-	{
-		const Eigen::Vector3d p = t.position();
-		const Eigen::Vector3d rpy = rollPitchYaw(t.pose.linear()) * 180.0 / M_PI;
-		std::printf("%-16s %5d %7.3f %9.3f %9.3f %9.3f %8.2f %7.2f %7.2f %7d\n", t.family.c_str(), t.id, t.size, p.x(),
-					p.y(), p.z(), rpy.x(), rpy.y(), rpy.z(), t.pointsUsed);
-	}
+	TagTableColumns columns;
+	columns.points = true;
+	std::fputs(tagTable(found.tags, columns).c_str(), stdout);
 }
 
 void printStages(const Detections& found)
@@ -94,7 +89,10 @@ int runDetect(int argc, char** argv)
 		if (args.positional.size() != 1) throw cli::UsageError("expected exactly one INPUT file");
 		if (!args.has("--json")) throw cli::UsageError("--json OUT is required");
 		const std::string input = args.positional[0], jsonPath = args.get("--json"), reportDir = args.get("--report");
-		const PipelineParams params = pipelineParamsFromArgs(args);
+		DetectionUsed used;
+		used.choices = detectionChoicesFromArgs(args);
+		used.params = resolveDetectionSettings(used.choices);
+		const PipelineParams& params = used.params;
 		const bool quiet = args.has("--quiet"), verbose = args.has("--verbose");
 
 		// Fail on an unwritable output now, not after minutes of work.
@@ -133,7 +131,7 @@ int runDetect(int argc, char** argv)
 			}
 		}();
 		writeTagsJson(jsonPath, found.tags);
-		writeMrptOutputs(args, map, found);
+		writeMrptOutputs(args, used, map, found);
 		if (!reportDir.empty())
 		{
 			progress.update("report", 0, 0);

@@ -29,17 +29,6 @@ const char* kUsage =
 	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md).\n"
 	"  --quiet          print nothing but errors (default: progress on stderr and a summary line)\n";
 
-/** Single-scan parameters unless a config file says otherwise; the flags win. */
-PipelineParams observeParams(const cli::Args& a)
-{
-	PipelineParams p = pipelineParamsFromArgs(a);
-	if (a.has("--config")) return p;
-	PipelineParams s = localize::singleScanPipelineParams();
-	s.families = p.families;
-	s.tagSize = p.tagSize;
-	s.threads = p.threads;
-	return s;
-}
 }  // namespace
 
 int runObserve(int argc, char** argv)
@@ -53,7 +42,8 @@ int runObserve(int argc, char** argv)
 		}
 		if (a.positional.size() != 2) throw cli::UsageError("expected IN.rawlog and OUT.rawlog");
 		const std::string in = a.positional[0], out = a.positional[1];
-		const PipelineParams params = observeParams(a);
+		// Single-scan parameters unless a config file replaces them; the flags win.
+		const PipelineParams params = pipelineParamsFromArgs(a, localize::singleScanPipelineParams());
 		checkOutputWritable(out);
 		const bool quiet = a.has("--quiet");
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));

@@ -27,34 +27,27 @@ void checkMrptOutputs(const cli::Args& args)
 
 namespace
 {
-// The detection settings the user chose travel with the map, so re-running
-// detection inside an MRPT app (CTagMap::tags() after new insertions) uses them.
-maps::TTagDetectionOptions detectionOptionsFrom(const cli::Args& args)
-{
-	maps::TTagDetectionOptions o;
-	o.families = args.get("--family");
-	o.tagSize = args.getDouble("--tag-size", 0);
-	o.configFile = args.get("--config");
-	return o;
-}
-
-maps::CTagMap::Ptr makeTagMap(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
+// The detection settings used travel with the map, so re-running detection
+// inside an MRPT app (CTagMap::tags() after new insertions) uses them.
+maps::CTagMap::Ptr makeTagMap(const PipelineParams& params, const mrpt::maps::CPointsMapXYZI& map,
 							  const std::vector<TagDetection>& tags)
 {
 	auto m = maps::CTagMap::Create();
-	m->detectionOptions = detectionOptionsFrom(args);
+	m->detectionParams = params;
 	m->setPoints(map);
 	m->setTags(tags);  // after setPoints: these tags are current, no re-detection
 	return m;
 }
 
-std::vector<std::pair<std::string, std::string>> iniDetectionKeys(const maps::TTagDetectionOptions& o)
+// The ini keeps what the user chose (a hand-editable file names a config
+// file rather than every parameter); CTagMap resolves it when loaded.
+std::vector<std::pair<std::string, std::string>> iniDetectionKeys(const DetectionChoices& c)
 {
-	return {{"families", o.families}, {"tagSize", mrpt::format("%.9g", o.tagSize)}, {"configFile", o.configFile}};
+	return {{"families", c.families}, {"tagSize", mrpt::format("%.9g", c.tagSize)}, {"configFile", c.configFile}};
 }
 }  // namespace
 
-void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
+void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
 					  const std::vector<TagDetection>& tags)
 {
 	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), tags);
@@ -62,18 +55,19 @@ void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& m
 	if (args.has("--ini"))
 	{
 		mrpt_bridge::MetricMapIniParams p;
-		p.tagMapDetectionOptions = iniDetectionKeys(detectionOptionsFrom(args));
+		p.tagMapDetectionOptions = iniDetectionKeys(used.choices);
 		mrpt_bridge::writeMetricMapIni(args.get("--ini"), tags, p);
 	}
 	if (args.has("--rawlog")) mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags);
 	// A .tagmap is one serialized CTagMap, which is also a valid one-entry
 	// rawlog: `RawLogViewer -l plugin F.tagmap` shows it (docs/MRPT.md).
-	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(args, map, tags));
+	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(used.params, map, tags));
 }
 
-void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found)
+void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
+					  const tagmap::Detections& found)
 {
-	writeMrptOutputs(args, map, found.tags);
+	writeMrptOutputs(args, used, map, found.tags);
 }
 
 }  // namespace tagmap::app

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "tagmap/detection_settings.h"
 #include "tagmap/tag_detection.h"
 
 namespace tagmap
@@ -30,11 +31,20 @@ const std::set<std::string>& mrptOutputOptions();
  *  an unwritable path fails at once instead of after minutes of work. */
 void checkMrptOutputs(const cli::Args& args);
 
-/** Writes every requested output. */
-void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found);
+/** How the tags were detected, for the outputs that keep it: the CTagMap
+ *  stores the resolved settings, the ini the user's choices. */
+struct DetectionUsed
+{
+	DetectionChoices choices;
+	PipelineParams params;
+};
+
+/** Writes every requested output (paths from `args`). */
+void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
+					  const tagmap::Detections& found);
 
 /** Same, from the tags alone (tests, tools without a pipeline run). */
-void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
+void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
 					  const std::vector<TagDetection>& tags);
 
 }  // namespace tagmap::app

@@ -2,7 +2,6 @@
 
 #include <cstdio>
 
-#include "tagmap/tag_family.h"
 
 namespace tagmap::app
 {
@@ -30,23 +29,30 @@ std::string pipelineOptionsHelp()
 		   "  --threads N        worker threads; results do not depend on N (default: all cores)\n";
 }
 
-PipelineParams pipelineParamsFromArgs(const cli::Args& args)
+DetectionChoices detectionChoicesFromArgs(const cli::Args& args)
 {
-	PipelineParams params = args.has("--config") ? PipelineParams::fromYamlFile(args.get("--config")) : PipelineParams{};
-	if (args.has("--family")) params.families = parseFamilyList(args.get("--family"));
+	DetectionChoices c;
+	c.configFile = args.get("--config");
+	c.families = args.get("--family");
 	if (args.has("--tag-size"))
 	{
-		params.tagSize = args.getDouble("--tag-size", 0);
-		if (!(params.tagSize > 0 && params.tagSize <= kMaxTagSize))
+		// Checked here too, so the message names the flag (a usage error), not a YAML key.
+		c.tagSize = args.getDouble("--tag-size", 0);
+		if (!(c.tagSize > 0 && c.tagSize <= kMaxTagSize))
 			throw cli::UsageError("--tag-size must be a positive length in metres, at most 10");
 	}
 	if (args.has("--threads"))
 	{
 		const long t = args.getInt("--threads", 0);
 		if (t < 1 || t > 1024) throw cli::UsageError("--threads must be between 1 and 1024");
-		params.threads = static_cast<unsigned>(t);
+		c.threads = static_cast<unsigned>(t);
 	}
-	return params;
+	return c;
+}
+
+PipelineParams pipelineParamsFromArgs(const cli::Args& args, const PipelineParams& defaults)
+{
+	return resolveDetectionSettings(detectionChoicesFromArgs(args), defaults);
 }
 
 std::set<std::string> with(std::set<std::string> a, const std::set<std::string>& b)

@@ -1,13 +1,13 @@
-// The options that set detection parameters, shared by `tagmap detect` and
-// `tagmap config --dump` so both read them the same way: defaults, then
-// --config FILE, then the flags.
+// The options that set detection parameters, shared by `tagmap detect`,
+// `tagmap config --dump` and `tagmap observe` so all read them the same way:
+// the flags become DetectionChoices, resolveDetectionSettings() does the rest.
 #pragma once
 
 #include <set>
 #include <string>
 
 #include "cli.h"
-#include "tagmap/pipeline_params.h"
+#include "tagmap/detection_settings.h"
 
 namespace tagmap::app
 {
@@ -17,8 +17,12 @@ const std::set<std::string>& pipelineOptions();
 /** Their --help lines, defaults included. */
 std::string pipelineOptionsHelp();
 
-/** Throws cli::UsageError for bad flag values, InputError for a bad file. */
-PipelineParams pipelineParamsFromArgs(const cli::Args& args);
+/** The flags as choices. Throws cli::UsageError for bad flag values. */
+DetectionChoices detectionChoicesFromArgs(const cli::Args& args);
+
+/** resolveDetectionSettings(detectionChoicesFromArgs(args), defaults):
+ *  throws cli::UsageError for bad flag values, InputError for a bad file. */
+PipelineParams pipelineParamsFromArgs(const cli::Args& args, const PipelineParams& defaults = PipelineParams{});
 
 /** `a` and `b` together, for cli::parse(). */
 std::set<std::string> with(std::set<std::string> a, const std::set<std::string>& b);

@@ -1,15 +1,9 @@
-// Runs when the plugin is loaded (dlopen by RawLogViewer -l, or at program
-// start when linked): MRPT deserializes objects by class name, so CTagMap must
-// be in MRPT's class registry before any archive naming it is read. (The
-// [MetricMap] factory name registers itself through MAP_DEFINITION_REGISTER
-// in CTagMap_definition.cpp.)
+// The tagmap MRPT plugin: all it does is register tagmap's classes when an
+// MRPT app loads it (`RawLogViewer -l`, `SceneViewer3D -l`, `rawlog-edit -p`,
+// dlopen). The classes themselves live in libs/maps (tagmap_maps), which
+// tagmap's own programs link directly; nothing links this module.
 #include <mrpt/core/initializer.h>
 
-#include "tagmap/maps/CTagMap.h"
-#include "tagmap/obs/CObservationTagPoses.h"
+#include "tagmap/maps/register_classes.h"
 
-MRPT_INITIALIZER(tagmap_register_mrpt_classes)
-{
-	mrpt::rtti::registerClass(CLASS_ID(tagmap::maps::CTagMap));
-	mrpt::rtti::registerClass(CLASS_ID(tagmap::obs::CObservationTagPoses));
-}
+MRPT_INITIALIZER(tagmap_plugin_register_classes) { tagmap::maps::registerClasses(); }

@@ -128,9 +128,12 @@ int main(int argc, char** argv)
 	tagmap::cli::Args args;
 	args.options = {{"--landmarks", dir + "/map.landmarks.gz"}, {"--tagmap", dir + "/map.tagmap"},
 					{"--ini", dir + "/map.ini"},				{"--rawlog", dir + "/map.rawlog"},
-					{"--3dscene", dir + "/map.3Dscene"},		{"--family", "tag36h11,aruco_4x4_50"}};
+					{"--3dscene", dir + "/map.3Dscene"}};
+	tagmap::app::DetectionUsed used;
+	used.choices.families = "tag36h11,aruco_4x4_50";
+	used.params = tagmap::resolveDetectionSettings(used.choices);
 	tagmap::app::checkMrptOutputs(args);
-	tagmap::app::writeMrptOutputs(args, map, tags);
+	tagmap::app::writeMrptOutputs(args, used, map, tags);
 	writeBeaconRawlog(dir + "/beacons.rawlog", fixtureTrajectory(), tags);
 	std::cout << "fixture: " << tags.size() << " tags, " << map.size() << " points in " << dir << "\n";
 	return 0;

@@ -1,5 +1,5 @@
 # Helpers for the reliability scripts, which run the real `tagmap` binary on
-# bad input and check the contract of shared/CONVENTIONS.md: one stderr line
+# bad input and check the contract of docs/RESULT_FORMAT.md: one stderr line
 # naming the file and the place, a non-zero status that is not a signal, and
 # no output file created or changed. Sourced, not run.
 # Usage: TAGMAP=/path/to/tagmap bash SCRIPT.sh

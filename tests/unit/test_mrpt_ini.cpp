@@ -41,8 +41,8 @@ TEST(MrptIni, ParsedByCMultiMetricMap)
 	auto tm = mm.mapByClass<maps::CTagMap>();
 	ASSERT_TRUE(tm);
 	EXPECT_FALSE(tm->genericMapParams.enableObservationLikelihood);  // the landmarksMap scores ranges
-	EXPECT_EQ(tm->detectionOptions.families, "tag36h11");
-	EXPECT_EQ(tm->detectionOptions.tagSize, 0.5);
+	EXPECT_EQ(tm->detectionParams.families, std::vector<std::string>{"tag36h11"});
+	EXPECT_EQ(tm->detectionParams.tagSize, 0.5);
 	ASSERT_EQ(tm->tags().size(), tags.size());
 	for (size_t i = 0; i < tags.size(); i++)
 	{

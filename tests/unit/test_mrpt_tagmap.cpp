@@ -2,11 +2,15 @@
 // the plugin adds, and the asString table.
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/math/CMatrixFixed.h>
+#include <mrpt/math/matrix_serialization.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include "../mrpt/synthetic_tags.h"
 #include "tagmap/maps/CTagMap.h"
+#include "tagmap/maps/tag_detection_archive.h"
+#include "tagmap/obs/CObservationTagPoses.h"
 
 using namespace tagmap;
 
@@ -38,8 +42,9 @@ TEST(MrptTagMap, SerializationRoundTrip)
 {
 	const auto tags = mrpt_test::syntheticTags();
 	maps::CTagMap m;
-	m.detectionOptions.families = "tag36h11";
-	m.detectionOptions.tagSize = 0.5;
+	m.detectionParams.families = {"tag36h11"};
+	m.detectionParams.tagSize = 0.5;
+	m.detectionParams.gradient.threshold = 0.1234567890123;  // every digit must survive the YAML text
 	m.likelihoodOptions.beaconRangesStd = 0.123;
 	m.visualOptions.showPoints = false;
 	m.setPoints(mrpt_test::syntheticWallMap(tags));
@@ -55,8 +60,9 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	expectSameTags(back->tags(), tags);
 	EXPECT_EQ(back->points().size(), m.points().size());
 	EXPECT_EQ(back->points().getPointsBufferRef_intensity(), m.points().getPointsBufferRef_intensity());
-	EXPECT_EQ(back->detectionOptions.families, "tag36h11");
-	EXPECT_EQ(back->detectionOptions.tagSize, 0.5);
+	EXPECT_EQ(back->detectionParams.families, std::vector<std::string>{"tag36h11"});
+	EXPECT_EQ(back->detectionParams.tagSize, 0.5);
+	EXPECT_EQ(back->detectionParams.gradient.threshold, 0.1234567890123);
 	EXPECT_EQ(back->likelihoodOptions.beaconRangesStd, 0.123);
 	EXPECT_FALSE(back->visualOptions.showPoints);
 }
@@ -81,4 +87,81 @@ TEST(MrptTagMap, VisualizationHasOneObjectPerTagPlusPoints)
 	m.getVisualizationInto(o);
 	EXPECT_EQ(o.size(), tags.size() + 1);
 	EXPECT_TRUE(o.getByName("tag36h11:7"));
+}
+
+// Files written by tagmap 0.1 (class version 0 of both classes, each with its
+// own tag layout) still read. The bytes are written here as 0.1 wrote them.
+namespace
+{
+struct TagMapReader : maps::CTagMap
+{
+	using maps::CTagMap::serializeFrom;
+};
+struct TagPosesReader : obs::CObservationTagPoses
+{
+	using obs::CObservationTagPoses::serializeFrom;
+};
+}  // namespace
+
+TEST(MrptTagMap, ReadsVersion0)
+{
+	const auto tags = mrpt_test::syntheticTags();
+	mrpt::io::CMemoryStream buf;
+	auto out = mrpt::serialization::archiveFrom(buf);
+	out << std::string("tag36h11") << 0.5 << std::string("my.yaml");  // detection options
+	out << 0.2 << true;  // likelihood options
+	out << false << true << true << 3.0;  // visual options
+	out << mrpt::maps::TMapGenericParams();
+	out << static_cast<uint32_t>(tags.size());
+	for (const auto& t : tags) maps::writeTagDetection(out, t);  // 0.1's layout, now layout 0
+	out << mrpt::maps::CPointsMapXYZI() << false;
+	buf.Seek(0);
+
+	TagMapReader m;
+	auto in = mrpt::serialization::archiveFrom(buf);
+	m.serializeFrom(in, 0);
+	expectSameTags(m.tags(), tags);
+	EXPECT_EQ(m.likelihoodOptions.beaconRangesStd, 0.2);
+	// The stored choices are resolved; my.yaml is not here, so defaults + choices.
+	EXPECT_EQ(m.detectionParams.families, std::vector<std::string>{"tag36h11"});
+	EXPECT_EQ(m.detectionParams.tagSize, 0.5);
+	EXPECT_EQ(m.visualOptions.pointSize, 3.0);
+}
+
+TEST(MrptTagPoses, ReadsVersion0AndRoundTrips)
+{
+	auto tags = mrpt_test::syntheticTags();
+	mrpt::io::CMemoryStream buf;
+	auto out = mrpt::serialization::archiveFrom(buf);
+	out << std::string("lidar_tags") << mrpt::Clock::fromDouble(3.5) << mrpt::poses::CPose3D(0.1, 0, 1, 0, 0, 0);
+	out << static_cast<uint32_t>(tags.size());
+	for (const auto& t : tags)
+	{
+		out << t.family << static_cast<int32_t>(t.id) << t.size;
+		out << mrpt::poses::CPose3D(mrpt::math::CMatrixDouble44(t.pose.matrix()));
+		out << mrpt::math::CMatrixDouble66(t.covariance);
+		out << static_cast<int32_t>(t.pointsUsed) << t.decodeMargin << t.patternFit << t.mirrored;
+	}
+	buf.Seek(0);
+	TagPosesReader o;
+	auto in = mrpt::serialization::archiveFrom(buf);
+	o.serializeFrom(in, 0);
+	EXPECT_EQ(o.sensorLabel, "lidar_tags");
+	ASSERT_EQ(o.tags.size(), tags.size());
+	for (size_t i = 0; i < tags.size(); i++)
+	{
+		EXPECT_EQ(o.tags[i].family, tags[i].family);
+		EXPECT_EQ(o.tags[i].id, tags[i].id);
+		EXPECT_LT((o.tags[i].pose.matrix() - tags[i].pose.matrix()).norm(), 1e-9);
+		EXPECT_LT((o.tags[i].corners[2] - tags[i].corners[2]).norm(), 1e-9);
+	}
+
+	// The current version keeps every field exactly, corners included.
+	mrpt::io::CMemoryStream buf2;
+	auto a2 = mrpt::serialization::archiveFrom(buf2);
+	a2 << o;
+	buf2.Seek(0);
+	auto back = a2.ReadObject<obs::CObservationTagPoses>();
+	ASSERT_TRUE(back);
+	expectSameTags(back->tags, o.tags);
 }

@@ -26,7 +26,7 @@ mrpt::img::CImage tagTextureImage(const std::string& family, int id, int pixelsP
 namespace
 {
 // The drawn square [lo, hi]^2 in the tag frame: the bitmap includes a quiet
-// zone, placed so the border square spans [-s/2, s/2] as CONVENTIONS.md
+// zone, placed so the border square spans [-s/2, s/2] as docs/RESULT_FORMAT.md
 // defines the tag frame.
 std::pair<double, double> drawnSpan(const TagDetection& tag, const TagBitmap& bmp)
 {

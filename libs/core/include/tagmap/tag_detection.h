@@ -1,5 +1,5 @@
 // One tag found in (or placed into) a map: the `tags` schema of
-// shared/CONVENTIONS.md as a C++ value.
+// docs/RESULT_FORMAT.md as a C++ value.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// The fiducial families tagmap knows: their names (shared/CONVENTIONS.md),
+// The fiducial families tagmap knows: their names (docs/RESULT_FORMAT.md),
 // their canonical bitmaps (from libapriltag and OpenCV, never drawn by hand)
 // and their geometry. Both the simulator (to print tags) and the decoder
 // stage (to read them) go through this one registry.

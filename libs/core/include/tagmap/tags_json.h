@@ -1,4 +1,4 @@
-// The result file of shared/CONVENTIONS.md: {"tags": [...]} plus optional
+// The result file of docs/RESULT_FORMAT.md: {"tags": [...]} plus optional
 // extra top-level fields (scene metadata for ground truth, a report summary).
 #pragma once
 
@@ -9,7 +9,7 @@
 
 namespace tagmap
 {
-/** Serialises tags to the CONVENTIONS JSON. `extraFields` is inserted as
+/** Serialises tags to the result JSON. `extraFields` is inserted as
  *  further top-level members, e.g. "\"scene\": \"parking\"" (may be empty).
  *  Output is deterministic: fixed key order and number formatting. */
 std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string& extraFields = {});

@@ -47,7 +47,7 @@ struct TagSpec
 {
 	std::string family;
 	int id = 0;
-	double size = 0;  // border-square edge (CONVENTIONS), metres
+	double size = 0;  // border-square edge (docs/RESULT_FORMAT.md), metres
 	Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // T_G_tag of the mounting surface
 	double margin = 0.01;  // white paper beyond the bitmap's quiet-zone cell, metres
 	double paperOffset = 1e-4;  // paper thickness/standoff from the wall, metres

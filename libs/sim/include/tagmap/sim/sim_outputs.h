@@ -1,5 +1,5 @@
 // Writing a simulation to disk: DIR/map.pcd (binary, via tagmap::io),
-// DIR/ground_truth.json (CONVENTIONS `tags` schema + scene metadata) and
+// DIR/ground_truth.json (the `tags` schema of docs/RESULT_FORMAT.md + scene metadata) and
 // optionally the SLAM-style keyframes DIR/scans.simplemap with
 // DIR/trajectory_true.tum and DIR/trajectory_drifted.tum.
 #pragma once

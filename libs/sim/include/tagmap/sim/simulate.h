@@ -60,7 +60,7 @@ struct SimulationOutput
 	std::string sceneName;
 	std::vector<std::string> sensorNames;
 	std::vector<std::string> objectNames;  // scene objects, then one paper per tag
-	std::vector<TagDetection> truth;  // printed faces in {G}, CONVENTIONS vertex order
+	std::vector<TagDetection> truth;  // printed faces in {G}, vertex order of docs/RESULT_FORMAT.md
 	std::vector<size_t> tagPoints;  // points whose echo came mostly from each tag's paper
 	/** Each tag where the drifted map shows it: the true pose moved by the
 	 *  drift of the frame that saw most of it (T_drifted_k * T_true_k^-1).

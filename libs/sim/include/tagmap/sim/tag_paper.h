@@ -18,7 +18,7 @@ Eigen::Isometry3d printedTagPose(const TagSpec& spec, uint64_t seed, size_t tagI
 /** The paper rectangle with the bitmap texture, printed face at `printedPose`. */
 SceneObject makeTagPaper(const TagSpec& spec, const Eigen::Isometry3d& printedPose);
 
-/** Ground truth in the CONVENTIONS schema (corners in vertex-index order). */
+/** Ground truth in the result schema (docs/RESULT_FORMAT.md) (corners in vertex-index order). */
 TagDetection tagTruth(const TagSpec& spec, const Eigen::Isometry3d& printedPose);
 
 }  // namespace tagmap::sim

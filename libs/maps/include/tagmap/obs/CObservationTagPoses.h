@@ -5,9 +5,10 @@
 // stock range-only localizers understand; this keeps everything the
 // detector knows (orientation included) for localizers that can use it.
 //
-// Registered with MRPT's class registry when the plugin loads, so
-// `RawLogViewer -l libtagmap_mrpt_plugin.so` shows its description
-// (getDescriptionAsText) and tagmap programs read it back from rawlogs.
+// Registered with MRPT's class registry by any program that links it
+// (register_classes.h), so tagmap programs read it back from rawlogs, and by
+// the plugin, so `RawLogViewer -l libtagmap_mrpt_plugin.so` shows its
+// description (getDescriptionAsText).
 #pragma once
 
 #include <mrpt/obs/CObservation.h>
@@ -29,7 +30,7 @@ class CObservationTagPoses : public mrpt::obs::CObservation, public mrpt::opengl
 	mrpt::poses::CPose3D sensorPose;
 
 	/** Tags in the sensor frame: `pose` is T_sensor_tag, `covariance` is
-	 *  [x y z | rx ry rz] in the sensor frame (CONVENTIONS / TagDetection),
+	 *  [x y z | rx ry rz] in the sensor frame (docs/RESULT_FORMAT.md, TagDetection),
 	 *  corners in the sensor frame. Sorted by family, then id. */
 	std::vector<TagDetection> tags;
 

@@ -3,13 +3,12 @@
 // rest of tagmap's MRPT outputs (tagmap/mrpt/tag_visual.h).
 #include <mrpt/opengl/CSetOfObjects.h>
 
-#include <cmath>
-#include <cstdio>
 #include <ostream>
 
 #include "tagmap/mrpt/beacon_id.h"
 #include "tagmap/mrpt/tag_visual.h"
 #include "tagmap/obs/CObservationTagPoses.h"
+#include "tagmap/tag_table.h"
 
 namespace tagmap::obs
 {
@@ -18,31 +17,21 @@ void CObservationTagPoses::getDescriptionAsText(std::ostream& o) const
 	CObservation::getDescriptionAsText(o);
 	o << "Sensor pose on the robot: " << sensorPose << "\n";
 	o << tags.size() << " tag(s), poses T_sensor_tag in the sensor frame:\n";
-	o << "  beacon    tag               size   range |        x        y        z |  roll pitch   yaw [deg]"
-		 " | std xyz [cm] | std rpy [deg]\n";
-	char line[320];
-	for (const TagDetection& t : tags)
-	{
-		const Eigen::Vector3d p = t.position();
-		const Eigen::Vector3d rpy = rollPitchYaw(t.pose.linear()) * (180.0 / M_PI);
-		const auto sd = [&](int i) { return std::sqrt(std::max(0.0, t.covariance(i, i))); };
-		long long beacon = -1;
+	TagTableColumns columns;
+	columns.firstHeader = "beacon";
+	columns.first = [](const TagDetection& t) {
 		try
 		{
-			beacon = mrpt_bridge::encodeBeaconId(t.family, t.id);
+			return std::to_string(mrpt_bridge::encodeBeaconId(t.family, t.id));
 		}
 		catch (const std::exception&)
 		{
-			// A family without a beacon index still gets its line.
+			return std::string("-");  // a family without a beacon index still gets its line
 		}
-		std::snprintf(line, sizeof line,
-					  "  %-9lld %-16s %5.3f %7.3f | %8.3f %8.3f %8.3f | %5.1f %5.1f %5.1f | %4.1f %4.1f %4.1f | "
-					  "%4.2f %4.2f %4.2f\n",
-					  beacon, (t.family + ":" + std::to_string(t.id)).c_str(), t.size, p.norm(), p.x(), p.y(), p.z(),
-					  rpy.x(), rpy.y(), rpy.z(), 100 * sd(0), 100 * sd(1), 100 * sd(2), sd(3) * 180 / M_PI,
-					  sd(4) * 180 / M_PI, sd(5) * 180 / M_PI);
-		o << line;
-	}
+	};
+	columns.range = true;
+	columns.stdDev = true;
+	o << tagTable(tags, columns);
 }
 
 void CObservationTagPoses::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const

@@ -62,6 +62,15 @@ void TTagDetectionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, co
 	detectionFields(*this, Saver{t, sec});
 }
 
+DetectionChoices detectionChoices(const TTagDetectionOptions& o)
+{
+	DetectionChoices c;
+	c.configFile = o.configFile;
+	c.families = o.families;
+	c.tagSize = o.tagSize;
+	return c;
+}
+
 void TTagLikelihoodOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec)
 {
 	likelihoodFields(*this, Loader{s, sec});

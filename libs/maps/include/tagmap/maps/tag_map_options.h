@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include "tagmap/detection_settings.h"
+
 namespace tagmap::maps
 {
 /** How tags are detected in the accumulated points (section
@@ -20,6 +22,9 @@ struct TTagDetectionOptions : public mrpt::config::CLoadableOptions
 	void loadFromConfigFile(const mrpt::config::CConfigFileBase& source, const std::string& section) override;
 	void saveToConfigFile(mrpt::config::CConfigFileBase& target, const std::string& section) const override;
 };
+
+/** The same choices for resolveDetectionSettings(). */
+DetectionChoices detectionChoices(const TTagDetectionOptions& o);
 
 /** Range-only likelihood, as CLandmarksMap/CBeaconMap model it (section
  *  "<prefix>_likelihoodOpts"; same key names as CLandmarksMap). */

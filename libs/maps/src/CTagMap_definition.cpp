@@ -4,6 +4,7 @@
 // the short name "tagMap", like MRPT's own maps ("landmarksMap", ...).
 #include <mrpt/config/CConfigFileBase.h>
 
+#include "tagmap/detection_settings.h"
 #include "tagmap/maps/CTagMap.h"
 #include "tagmap/mrpt/tags_ini.h"
 #include "tagmap/tag_family.h"
@@ -37,7 +38,7 @@ mrpt::maps::CMetricMap* CTagMap::internal_CreateFromMapDefinition(const mrpt::ma
 {
 	const auto& def = dynamic_cast<const CTagMap::TMapDefinition&>(def_);
 	auto* map = new CTagMap();
-	map->detectionOptions = def.detectionOpts;
+	map->detectionParams = resolveDetectionSettings(detectionChoices(def.detectionOpts));
 	map->likelihoodOptions = def.likelihoodOpts;
 	map->visualOptions = def.visualOpts;
 	map->setTags(def.initialTags);

@@ -1,7 +1,8 @@
 // tagmap::maps::CTagMap: a map of fiducial tags as a first-class MRPT metric
-// map. It lives in the tagmap MRPT plugin (libtagmap_mrpt_plugin.so); loading
-// the plugin (RawLogViewer -l, dlopen, or linking it) registers the class for
-// deserialization and the name "tagMap" for [MetricMap] ini files.
+// map. It lives in tagmap_maps (libs/maps); linking it registers the class
+// for deserialization and the name "tagMap" for [MetricMap] ini files
+// (register_classes.h). MRPT's own apps get it by loading the plugin
+// (RawLogViewer -l libtagmap_mrpt_plugin.so).
 //
 //  - insertObservation(): LiDAR observations with intensity accumulate points;
 //    tags are detected on demand (tags()) by tagmap::Pipeline.
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "tagmap/maps/tag_map_options.h"
+#include "tagmap/pipeline_params.h"
 #include "tagmap/tag_detection.h"
 
 namespace tagmap::maps
@@ -29,7 +31,10 @@ class CTagMap : public mrpt::maps::CMetricMap
    public:
 	CTagMap() = default;
 
-	TTagDetectionOptions detectionOptions;
+	/** The detection settings tags() re-detects with, resolved when the map
+	 *  was made (resolveDetectionSettings: defaults, config file, choices) and
+	 *  stored whole, so the map detects the same way on any machine. */
+	PipelineParams detectionParams;
 	TTagLikelihoodOptions likelihoodOptions;
 	TTagVisualOptions visualOptions;
 
@@ -49,7 +54,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 
 	// CMetricMap
 	bool isEmpty() const override;
-	/** Writes <prefix>_tags.json (CONVENTIONS result schema). */
+	/** Writes <prefix>_tags.json (docs/RESULT_FORMAT.md). */
 	void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
 	// Visualizable
 	void getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const override;
@@ -58,7 +63,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 
 	MAP_DEFINITION_START(CTagMap)
 	std::vector<TagDetection> initialTags;  // "<prefix>_creationOpts": tag_count, tag_%03u_* (tagmap/mrpt/tags_ini.h)
-	TTagDetectionOptions detectionOpts;  // "<prefix>_detectionOpts"
+	TTagDetectionOptions detectionOpts;  // "<prefix>_detectionOpts", resolved into detectionParams
 	TTagLikelihoodOptions likelihoodOpts;  // "<prefix>_likelihoodOpts"
 	TTagVisualOptions visualOpts;  // "<prefix>_visualOpts"
 	MAP_DEFINITION_END(CTagMap)
