@@ -3,6 +3,7 @@
 #include <mrpt/core/format.h>
 
 #include "tagmap/atomic_file.h"
+#include "tagmap/local_frame.h"
 #include "tagmap/maps/CTagMap.h"
 #include "tagmap/mrpt/landmarks_map.h"
 #include "tagmap/mrpt/metric_map_ini.h"
@@ -55,25 +56,36 @@ std::vector<std::pair<std::string, std::string>> iniDetectionKeys(const maps::TT
 }  // namespace
 
 void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
-					  const std::vector<TagDetection>& tags)
+					  const std::vector<TagDetection>& tags, const Eigen::Vector3d& origin)
 {
-	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), tags);
-	if (args.has("--3dscene")) mrpt_bridge::write3DScene(args.get("--3dscene"), map, tags);
+	// Beacons are doubles: in the file's frame. The scene and rawlog views
+	// hold float points: in the local frame, the origin in the cloud's name.
+	const std::vector<TagDetection> inFileFrame = translatedTags(tags, origin);
+	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), inFileFrame);
+	mrpt_bridge::TagSceneParams sceneParams;
+	sceneParams.cloud.localOrigin = origin;
+	if (args.has("--3dscene")) mrpt_bridge::write3DScene(args.get("--3dscene"), map, tags, sceneParams);
 	if (args.has("--ini"))
 	{
 		mrpt_bridge::MetricMapIniParams p;
 		p.tagMapDetectionOptions = iniDetectionKeys(detectionOptionsFrom(args));
-		mrpt_bridge::writeMetricMapIni(args.get("--ini"), tags, p);
+		mrpt_bridge::writeMetricMapIni(args.get("--ini"), inFileFrame, p);
 	}
-	if (args.has("--rawlog")) mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags);
+	if (args.has("--rawlog"))
+	{
+		mrpt_bridge::RawlogParams rp;
+		rp.scene = sceneParams;
+		mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags, rp);
+	}
 	// A .tagmap is one serialized CTagMap, which is also a valid one-entry
 	// rawlog: `RawLogViewer -l plugin F.tagmap` shows it (docs/MRPT.md).
 	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(args, map, tags));
 }
 
-void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found)
+void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found,
+					  const Eigen::Vector3d& origin)
 {
-	writeMrptOutputs(args, map, found.tags);
+	writeMrptOutputs(args, map, found.tags, origin);
 }
 
 }  // namespace tagmap::app

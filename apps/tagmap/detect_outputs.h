@@ -30,11 +30,15 @@ const std::set<std::string>& mrptOutputOptions();
  *  an unwritable path fails at once instead of after minutes of work. */
 void checkMrptOutputs(const cli::Args& args);
 
-/** Writes every requested output. */
-void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found);
+/** Writes every requested output. `map` and the detections are in the local
+ *  frame (file coordinates minus `origin`, io::LoadReport::origin): the
+ *  landmarks and ini get the tags in the file's frame; the 3D scene, rawlog
+ *  and CTagMap stay in the local frame (float points) and name the origin. */
+void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found,
+					  const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 /** Same, from the tags alone (tests, tools without a pipeline run). */
 void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
-					  const std::vector<TagDetection>& tags);
+					  const std::vector<TagDetection>& tags, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 }  // namespace tagmap::app
