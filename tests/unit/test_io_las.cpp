@@ -158,6 +158,17 @@ TEST(IoLas, MedianNotFirstPointsChooseTheOrigin)
 	EXPECT_EQ(back.size(), pts.size());
 }
 
+TEST(IoLas, SentinelsDoNotBecomeTheOrigin)
+{
+	const std::vector<Pt> pts{{1e30f, 0, 1, 5}, {NAN, 0, 1, 5}, {0, 0, 1, 5}};
+	tagmap::io::LoadReport r;
+	const auto m = tagmap::io::loadPointCloud(writeFile("s.pcd", makePcd(pts, xyziFields(), "binary")), &r);
+	EXPECT_EQ(r.origin, Eigen::Vector3d::Zero());
+	EXPECT_EQ(m.size(), 1u);
+	EXPECT_EQ(r.outOfRangeSkipped, 1u);
+	EXPECT_EQ(r.nonFiniteSkipped, 1u);
+}
+
 TEST(IoLas, HandBuiltFilesWithVlrsEvlrsAndCounts)
 {
 	const auto pts = samplePoints(300);

@@ -11,6 +11,11 @@ namespace tagmap::io
 Eigen::Vector3d chooseLocalOrigin(std::vector<Eigen::Vector3d> points)
 {
 	Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+	// Sentinels (1e30, FLT_MAX) and NaN must not become the origin: every
+	// place on Earth is within kMaxAbsCoordinate of a projected or ECEF frame's origin.
+	points.erase(std::remove_if(points.begin(), points.end(),
+								[](const Eigen::Vector3d& p) { return !(p.cwiseAbs().maxCoeff() <= kMaxAbsCoordinate); }),
+				 points.end());
 	if (points.empty()) return origin;
 	const auto mid = points.begin() + static_cast<std::ptrdiff_t>(points.size() / 2);
 	for (int a = 0; a < 3; ++a)

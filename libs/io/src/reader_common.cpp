@@ -66,9 +66,8 @@ void MapFiller::fixOrigin()
 {
 	std::vector<Eigen::Vector3d> sample;
 	sample.reserve(held_.size());
-	for (const auto& h : held_)
-		if (h.allFinite()) sample.push_back(h.head<3>());
-	report_.origin = chooseLocalOrigin(sample);
+	for (const auto& h : held_) sample.push_back(h.head<3>());
+	report_.origin = chooseLocalOrigin(std::move(sample));
 	report_.originFixed = true;
 	for (const auto& h : held_)
 		store(h.x() - report_.origin.x(), h.y() - report_.origin.y(), h.z() - report_.origin.z(), static_cast<float>(h.w()));

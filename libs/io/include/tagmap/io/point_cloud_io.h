@@ -69,7 +69,8 @@ const char* supportedExtensions();
 /** The local origin for points (file frame): per axis, the median rounded
  *  to whole metres, or 0 when within kLocalOriginBeyond of the file's
  *  origin. The median, not the centre of the bounds, so stray returns
- *  thousands of km away do not move it. Non-finite points must be left out. */
+ *  thousands of km away do not move it. Points not finite or farther than
+ *  kMaxAbsCoordinate from the file's origin (sentinels) are left out. */
 Eigen::Vector3d chooseLocalOrigin(std::vector<Eigen::Vector3d> points);
 
 /** Loads any supported file into `out` (cleared first). Throws InputError.
