@@ -55,9 +55,10 @@ std::string usage()
 		   "LAS scaled integers), a local origin is subtracted before they are stored as\n"
 		   "float, and detection runs in that local frame; the origin is printed. The JSON,\n"
 		   "--landmarks and --ini are in the file's frame (double precision); the point\n"
-		   "clouds of --3dscene, --rawlog and --tagmap are float, so they stay in the local\n"
-		   "frame and the cloud's name says the origin. Points more than 1e7 m from the\n"
-		   "origin or not finite are skipped (counted); if none is left, detect fails.\n"
+		   "clouds of --3dscene and --rawlog are float, so they stay in the local frame and\n"
+		   "the cloud's name says the origin; --tagmap is wholly in the local frame.\n"
+		   "Points more than 1e7 m from the origin or not finite are skipped (counted); if\n"
+		   "none is left, detect fails.\n"
 		   "LAZ: decompress first (laszip, PDAL).\n";
 }
 
