@@ -1,4 +1,5 @@
 // tagmap detect: point-cloud map in, tags (family, id, corners, pose) out.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -53,10 +54,11 @@ std::string usage()
 		   "\n"
 		   "Georeferenced maps (UTM, ECEF): coordinates are read in double (PCD/PLY float64,\n"
 		   "LAS scaled integers), a local origin is subtracted before they are stored as\n"
-		   "float, and detection runs in that local frame; the origin is printed. The JSON,\n"
-		   "--landmarks and --ini are in the file's frame (double precision); the point\n"
-		   "clouds of --3dscene and --rawlog are float, so they stay in the local frame and\n"
-		   "the cloud's name says the origin; --tagmap is wholly in the local frame.\n"
+		   "float, and detection runs in that local frame; the origin is printed. The JSON and\n"
+		   "the printed table are in the file's frame (double precision). MRPT outputs are in the\n"
+		   "local frame: MRPT stores points as float, and CLandmarksMap (--landmarks, and\n"
+		   "pf-localization from --ini) grids its landmarks from 0, which cannot reach UTM\n"
+		   "coordinates; --3dscene and --rawlog name the origin in the cloud's name.\n"
 		   "Points more than 1e7 m from the origin or not finite are skipped (counted); if\n"
 		   "none is left, detect fails.\n"
 		   "LAZ: decompress first (laszip, PDAL).\n";
@@ -158,6 +160,10 @@ int runDetect(int argc, char** argv)
 		}();
 		writeTagsJson(jsonPath, translatedTags(found.tags, origin));
 		writeMrptOutputs(args, map, found, origin);
+		if (!quiet && !origin.isZero() && std::any_of(mrptOutputOptions().begin(), mrptOutputOptions().end(),
+													  [&](const std::string& o) { return args.has(o); }))
+			std::fprintf(stderr, "tagmap: the MRPT outputs are in the local frame: add the local origin %.3f %.3f %.3f\n",
+						 origin.x(), origin.y(), origin.z());
 		if (!reportDir.empty())
 		{
 			progress.update("report", 0, 0);

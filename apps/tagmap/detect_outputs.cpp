@@ -3,7 +3,6 @@
 #include <mrpt/core/format.h>
 
 #include "tagmap/atomic_file.h"
-#include "tagmap/local_frame.h"
 #include "tagmap/maps/CTagMap.h"
 #include "tagmap/mrpt/landmarks_map.h"
 #include "tagmap/mrpt/metric_map_ini.h"
@@ -58,10 +57,12 @@ std::vector<std::pair<std::string, std::string>> iniDetectionKeys(const maps::TT
 void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map,
 					  const std::vector<TagDetection>& tags, const Eigen::Vector3d& origin)
 {
-	// Beacons are doubles: in the file's frame. The scene and rawlog views
-	// hold float points: in the local frame, the origin in the cloud's name.
-	const std::vector<TagDetection> inFileFrame = translatedTags(tags, origin);
-	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), inFileFrame);
+	// Everything MRPT reads stays in the local frame. The scene and rawlog
+	// views hold float points (the origin goes in the cloud's name), and
+	// CLandmarksMap, which the ini also builds in pf-localization, keeps a
+	// 0.2 m grid of its landmarks grown from 0: UTM coordinates ended in
+	// std::bad_alloc.
+	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), tags);
 	mrpt_bridge::TagSceneParams sceneParams;
 	sceneParams.cloud.localOrigin = origin;
 	if (args.has("--3dscene")) mrpt_bridge::write3DScene(args.get("--3dscene"), map, tags, sceneParams);
@@ -69,7 +70,7 @@ void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& m
 	{
 		mrpt_bridge::MetricMapIniParams p;
 		p.tagMapDetectionOptions = iniDetectionKeys(detectionOptionsFrom(args));
-		mrpt_bridge::writeMetricMapIni(args.get("--ini"), inFileFrame, p);
+		mrpt_bridge::writeMetricMapIni(args.get("--ini"), tags, p);
 	}
 	if (args.has("--rawlog"))
 	{

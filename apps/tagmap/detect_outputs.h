@@ -31,9 +31,10 @@ const std::set<std::string>& mrptOutputOptions();
 void checkMrptOutputs(const cli::Args& args);
 
 /** Writes every requested output. `map` and the detections are in the local
- *  frame (file coordinates minus `origin`, io::LoadReport::origin): the
- *  landmarks and ini get the tags in the file's frame; the 3D scene, rawlog
- *  and CTagMap stay in the local frame (float points) and name the origin. */
+ *  frame (file coordinates minus `origin`, io::LoadReport::origin), and so
+ *  is every output: MRPT keeps points as float, and CLandmarksMap (also
+ *  built from the ini) grids its landmarks from 0, which cannot reach UTM
+ *  coordinates. The 3D scene and rawlog name the origin in the cloud's name. */
 void writeMrptOutputs(const cli::Args& args, const mrpt::maps::CPointsMapXYZI& map, const tagmap::Detections& found,
 					  const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
