@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET=${TAGMAP_FUZZ_SECONDS:-60}
-TARGETS=(${TAGMAP_FUZZ_TARGETS:-pcd ply lzf scene config})
+TARGETS=(${TAGMAP_FUZZ_TARGETS:-pcd ply las lzf scene config})
 B=build-fuzz
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 # tagmap_warnings() has GCC-only options; clang need not list them.

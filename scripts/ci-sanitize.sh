@@ -12,7 +12,7 @@ B=build-asan
 TARGETS=(
 	test_core test_io test_sim_patterns test_sim_physics test_sim_drift test_sim_scene
 	test_tag_decoder test_stages test_pipeline test_localize tagmap
-	fuzz_pcd_replay fuzz_ply_replay fuzz_lzf_replay fuzz_scene_replay fuzz_config_replay
+	fuzz_pcd_replay fuzz_ply_replay fuzz_las_replay fuzz_lzf_replay fuzz_scene_replay fuzz_config_replay
 )
 EXCLUDE='_NOT_BUILT|^mrpt_|report_chromium|^bench_|^localize_|reliability_(determinism|kill_midrun)'
 

@@ -23,6 +23,23 @@ double Args::getDouble(const std::string& opt, double def) const
 	return v;
 }
 
+Eigen::Vector3d Args::getVector3(const std::string& opt, const Eigen::Vector3d& def) const
+{
+	auto it = options.find(opt);
+	if (it == options.end()) return def;
+	Eigen::Vector3d v;
+	const char* s = it->second.c_str();
+	for (int a = 0; a < 3; a++)
+	{
+		char* end = nullptr;
+		v[a] = std::strtod(s, &end);
+		if (end == s || !std::isfinite(v[a]) || *end != (a < 2 ? ',' : '\0'))
+			throw UsageError(opt + ": expected x,y,z (three numbers), got '" + it->second + "'");
+		s = end + 1;
+	}
+	return v;
+}
+
 long Args::getInt(const std::string& opt, long def) const
 {
 	auto it = options.find(opt);

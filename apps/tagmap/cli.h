@@ -2,6 +2,7 @@
 // "--flag value" options and boolean switches, with one-line errors.
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
 #include <map>
 #include <set>
@@ -28,6 +29,8 @@ struct Args
 	/** Parses a number; throws UsageError "--opt: 'x' is not a number". */
 	double getDouble(const std::string& opt, double def) const;
 	long getInt(const std::string& opt, long def) const;
+	/** "x,y,z": three finite numbers; throws UsageError otherwise. */
+	Eigen::Vector3d getVector3(const std::string& opt, const Eigen::Vector3d& def) const;
 };
 
 /** `valueOptions` take a value; `switchOptions` do not. Unknown options

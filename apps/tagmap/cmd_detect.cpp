@@ -1,4 +1,5 @@
 // tagmap detect: point-cloud map in, tags (family, id, corners, pose) out.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "pipeline_args.h"
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
+#include "tagmap/local_frame.h"
 #include "tagmap/io/point_cloud_io.h"
 #include "tagmap/pipeline.h"
 #include "tagmap/report/progress_printer.h"
@@ -41,13 +43,34 @@ std::string usage()
 		   "  --tagmap F         tagmap::maps::CTagMap with the tags and the points (load the plugin)\n"
 		   "  --ini F            [MetricMap] section with the tags as beacons, for pf-localization\n"
 		   "  --rawlog F         RawLogViewer file: the map and the tags as a CObservation3DScene\n"
-		   "  --3dscene F        SceneViewer3D file: the map coloured by intensity, the tags drawn\n" +
+		   "  --3dscene F        SceneViewer3D file: the map coloured by intensity, the tags drawn\n"
+		   "  --origin X,Y,Z     local origin to subtract from the file's coordinates (default: the\n"
+		   "                     map's median rounded to metres, 0 on axes within 1 km of 0)\n" +
 		   pipelineOptionsHelp() +
 		   "  --quiet            print nothing but errors (default: progress and a table of tags)\n"
 		   "  --verbose          also print per-stage timings and counts\n"
 		   "  --help             this text\n"
 		   "\n"
-		   "Progress goes to stderr: a bar on a terminal, a line every 2 s otherwise.\n";
+		   "Progress goes to stderr: a bar on a terminal, a line every 2 s otherwise.\n"
+		   "\n"
+		   "Georeferenced maps (UTM, ECEF): coordinates are read in double (PCD/PLY float64,\n"
+		   "LAS scaled integers), a local origin is subtracted before they are stored as\n"
+		   "float, and detection runs in that local frame; the origin is printed. The JSON and\n"
+		   "the printed table are in the file's frame (double precision). MRPT outputs are in the\n"
+		   "local frame: MRPT stores points as float, and CLandmarksMap (--landmarks, and\n"
+		   "pf-localization from --ini) grids its landmarks from 0, which cannot reach UTM\n"
+		   "coordinates; --3dscene and --rawlog name the origin in the cloud's name.\n"
+		   "Points more than 1e7 m from the origin or not finite are skipped (counted); if\n"
+		   "none is left, detect fails.\n"
+		   "LAZ: decompress first (laszip, PDAL).\n";
+}
+
+std::string skippedSummary(const io::LoadReport& load)
+{
+	return "read " + std::to_string(load.pointsRead) + " points; skipped " + std::to_string(load.nonFiniteSkipped) +
+		   " non-finite (NaN/Inf coordinate or intensity), skipped " + std::to_string(load.outOfRangeSkipped) +
+		   " out of range (more than " + std::to_string(static_cast<long long>(io::kMaxAbsCoordinate)) +
+		   " m from the local origin)";
 }
 
 std::string joinArgs(int argc, char** argv)
@@ -57,11 +80,11 @@ std::string joinArgs(int argc, char** argv)
 	return s;
 }
 
-void printTable(const Detections& found)
+void printTable(const Detections& found, const Eigen::Vector3d& origin)
 {
 	TagTableColumns columns;
 	columns.points = true;
-	std::fputs(tagTable(found.tags, columns).c_str(), stdout);
+	std::fputs(tagTable(translatedTags(found.tags, origin), columns).c_str(), stdout);
 }
 
 void printStages(const Detections& found)
@@ -79,7 +102,7 @@ int runDetect(int argc, char** argv)
 {
 	return cli::runCommand("detect", [&] {
 		const cli::Args args =
-			cli::parse(argc, argv, 1, with(with(pipelineOptions(), mrptOutputOptions()), {"--json", "--report"}),
+			cli::parse(argc, argv, 1, with(with(pipelineOptions(), mrptOutputOptions()), {"--json", "--report", "--origin"}),
 					   {"--quiet", "--verbose", "--help"});
 		if (args.has("--help"))
 		{
@@ -105,16 +128,21 @@ int runDetect(int argc, char** argv)
 
 		io::LoadReport load;
 		load.progress = [&](size_t pointsSoFar) { progress.update("reading", pointsSoFar, 0); };
-		const mrpt::maps::CPointsMapXYZI map = io::loadPointCloud(input, &load);
+		io::LoadParams loadParams;
+		loadParams.fixedOrigin = args.has("--origin");
+		loadParams.origin = args.getVector3("--origin", Eigen::Vector3d::Zero());
+		const mrpt::maps::CPointsMapXYZI map = io::loadPointCloud(input, &load, loadParams);
 		progress.update("reading", map.size(), map.size());
+		const Eigen::Vector3d& origin = load.origin;
+		// Nothing usable is the input's fault, and an empty result would
+		// read as "no tags here": fail, saying what happened to the points.
+		if (load.pointsKept == 0) throw InputError(input, "", "no usable point: " + skippedSummary(load));
 		if (!quiet)
 		{
-			std::fprintf(stderr, "tagmap: read %zu points from %s (%s, intensity from '%s')", load.pointsKept,
-						 input.c_str(), load.format.c_str(), load.intensityField.c_str());
-			if (load.nonFiniteSkipped) std::fprintf(stderr, ", skipped %zu non-finite", load.nonFiniteSkipped);
-			if (load.outOfRangeSkipped)
-				std::fprintf(stderr, ", skipped %zu out of range (|coordinate| > %g m)", load.outOfRangeSkipped,
-							 static_cast<double>(io::kMaxAbsCoordinate));
+			std::fprintf(stderr, "tagmap: read %zu points from %s (%s, intensity from '%s'), local origin %.3f %.3f %.3f",
+						 load.pointsKept, input.c_str(), load.format.c_str(), load.intensityField.c_str(), origin.x(),
+						 origin.y(), origin.z());
+			if (load.nonFiniteSkipped + load.outOfRangeSkipped) std::fprintf(stderr, "; %s", skippedSummary(load).c_str());
 			std::fprintf(stderr, "\n");
 		}
 		const Pipeline pipeline(params);
@@ -130,8 +158,12 @@ int runDetect(int argc, char** argv)
 				throw InputError(input, "", e.what());
 			}
 		}();
-		writeTagsJson(jsonPath, found.tags);
-		writeMrptOutputs(args, used, map, found);
+		writeTagsJson(jsonPath, translatedTags(found.tags, origin));
+		writeMrptOutputs(args, used, map, found, origin);
+		if (!quiet && !origin.isZero() && std::any_of(mrptOutputOptions().begin(), mrptOutputOptions().end(),
+													  [&](const std::string& o) { return args.has(o); }))
+			std::fprintf(stderr, "tagmap: the MRPT outputs are in the local frame: add the local origin %.3f %.3f %.3f\n",
+						 origin.x(), origin.y(), origin.z());
 		if (!reportDir.empty())
 		{
 			progress.update("report", 0, 0);
@@ -142,7 +174,7 @@ int runDetect(int argc, char** argv)
 		progress.finish();
 		if (!quiet)
 		{
-			printTable(found);
+			printTable(found, origin);
 			std::fprintf(stderr, "tagmap: %zu tag(s) in %.2f s -> %s\n", found.tags.size(), found.totalSeconds,
 						 jsonPath.c_str());
 			if (!reportDir.empty()) std::fprintf(stderr, "tagmap: report -> %s/index.html\n", reportDir.c_str());

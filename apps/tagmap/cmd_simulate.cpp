@@ -20,13 +20,16 @@ namespace
 const char* kUsage =
 	"Usage: tagmap simulate SCENE.yaml --out DIR [--seed N] [--intensity-scale 1|255|65535]\n"
 	"                       [--points N] [--param NAME=VALUE] [--threads N] [--simplemap]\n"
-	"                       [--run NAME] [--rawlog FILE] [--quiet]\n"
+	"                       [--run NAME] [--rawlog FILE] [--las FORMAT] [--shift X,Y,Z] [--quiet]\n"
 	"Simulates LiDAR scans of a YAML scene and writes DIR/map.pcd and DIR/ground_truth.json;\n"
 	"with --simplemap also DIR/scans.simplemap, DIR/trajectory_true.tum, DIR/trajectory_drifted.tum.\n"
 	"  --points N        rescale the sensors' density for a map of about N points\n"
 	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml)\n"
 	"  --run NAME        simulate only this run of the scene\n"
 	"  --rawlog FILE     also write an MRPT rawlog (odometry + scans) and DIR/trajectory_true.tum\n"
+	"  --las FORMAT      also write DIR/map.las, LAS point format 0..10 (1.2 for 0-3, else 1.4), 1 mm steps\n"
+	"  --shift X,Y,Z     add this to map.pcd (then float64 x y z), map.las and ground_truth.json:\n"
+	"                    a georeferenced copy, e.g. 512345,5123456,187 (simplemap, rawlog unshifted)\n"
 	"  --quiet           print nothing but errors (default: progress on stderr and a summary line)\n";
 
 sim::SceneParameters parseParam(const std::string& s)
@@ -42,7 +45,7 @@ sim::SceneParameters parseParam(const std::string& s)
 int runSimulate(int argc, char** argv)
 {
 	return cli::runCommand("simulate", [&] {
-		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads", "--run", "--rawlog"},
+		const cli::Args a = cli::parse(argc, argv, 1, {"--out", "--seed", "--intensity-scale", "--points", "--param", "--threads", "--run", "--rawlog", "--las", "--shift"},
 									   {"--simplemap", "--quiet", "--help"});
 		if (a.has("--help"))
 		{
@@ -62,6 +65,9 @@ int runSimulate(int argc, char** argv)
 		opt.threads = static_cast<unsigned>(threads);
 		opt.intensityScale = a.getDouble("--intensity-scale", 1);
 		if (!(opt.intensityScale > 0)) throw cli::UsageError("--intensity-scale must be > 0");
+		const long lasFormat = a.getInt("--las", -1);
+		if (a.has("--las") && (lasFormat < 0 || lasFormat > 10)) throw cli::UsageError("--las: the LAS point format is 0..10");
+		const Eigen::Vector3d shift = a.getVector3("--shift", Eigen::Vector3d::Zero());
 
 		sim::Scene scene =
 			sim::loadScene(a.positional[0], a.has("--param") ? parseParam(a.get("--param")) : sim::SceneParameters{});
@@ -80,7 +86,12 @@ int runSimulate(int argc, char** argv)
 		const sim::SimulationOutput out =
 			sim::simulate(scene, opt, [&](size_t done, size_t total) { progress.update("casting rays", done, total); });
 		progress.update("writing", 0, 0);
-		sim::writeSimulationOutputs(a.get("--out"), out, {a.has("--simplemap"), opt.seed});
+		sim::WriteOptions wo;
+		wo.simplemap = a.has("--simplemap");
+		wo.seed = opt.seed;
+		wo.lasFormat = static_cast<int>(lasFormat);
+		wo.shift = shift;
+		sim::writeSimulationOutputs(a.get("--out"), out, wo);
 		if (a.has("--rawlog"))
 			sim::writeSimulationRawlog(a.get("--rawlog"),
 									   (std::filesystem::path(a.get("--out")) / "trajectory_true.tum").string(), out);

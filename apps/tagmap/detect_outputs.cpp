@@ -48,26 +48,38 @@ std::vector<std::pair<std::string, std::string>> iniDetectionKeys(const Detectio
 }  // namespace
 
 void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
-					  const std::vector<TagDetection>& tags)
+					  const std::vector<TagDetection>& tags, const Eigen::Vector3d& origin)
 {
+	// Everything MRPT reads stays in the local frame. The scene and rawlog
+	// views hold float points (the origin goes in the cloud's name), and
+	// CLandmarksMap, which the ini also builds in pf-localization, keeps a
+	// 0.2 m grid of its landmarks grown from 0: UTM coordinates ended in
+	// std::bad_alloc.
 	if (args.has("--landmarks")) mrpt_bridge::writeLandmarksMap(args.get("--landmarks"), tags);
-	if (args.has("--3dscene")) mrpt_bridge::write3DScene(args.get("--3dscene"), map, tags);
+	mrpt_bridge::TagSceneParams sceneParams;
+	sceneParams.cloud.localOrigin = origin;
+	if (args.has("--3dscene")) mrpt_bridge::write3DScene(args.get("--3dscene"), map, tags, sceneParams);
 	if (args.has("--ini"))
 	{
 		mrpt_bridge::MetricMapIniParams p;
 		p.tagMapDetectionOptions = iniDetectionKeys(used.choices);
 		mrpt_bridge::writeMetricMapIni(args.get("--ini"), tags, p);
 	}
-	if (args.has("--rawlog")) mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags);
+	if (args.has("--rawlog"))
+	{
+		mrpt_bridge::RawlogParams rp;
+		rp.scene = sceneParams;
+		mrpt_bridge::writeTagRawlog(args.get("--rawlog"), map, tags, rp);
+	}
 	// A .tagmap is one serialized CTagMap, which is also a valid one-entry
 	// rawlog: `RawLogViewer -l plugin F.tagmap` shows it (docs/MRPT.md).
 	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(used.params, map, tags));
 }
 
 void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
-					  const tagmap::Detections& found)
+					  const tagmap::Detections& found, const Eigen::Vector3d& origin)
 {
-	writeMrptOutputs(args, used, map, found.tags);
+	writeMrptOutputs(args, used, map, found.tags, origin);
 }
 
 }  // namespace tagmap::app

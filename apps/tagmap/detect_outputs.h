@@ -39,12 +39,17 @@ struct DetectionUsed
 	PipelineParams params;
 };
 
-/** Writes every requested output (paths from `args`). */
+/** Writes every requested output (paths from `args`). `map` and the
+ *  detections are in the local frame (file coordinates minus `origin`,
+ *  io::LoadReport::origin), and so is every output: MRPT keeps points as
+ *  float, and CLandmarksMap (also built from the ini) grids its landmarks
+ *  from 0, which cannot reach UTM coordinates. The 3D scene and rawlog name
+ *  the origin in the cloud's name. */
 void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
-					  const tagmap::Detections& found);
+					  const tagmap::Detections& found, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 /** Same, from the tags alone (tests, tools without a pipeline run). */
 void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
-					  const std::vector<TagDetection>& tags);
+					  const std::vector<TagDetection>& tags, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 }  // namespace tagmap::app

@@ -27,6 +27,7 @@ endfunction()
 
 tagmap_fuzz_target(fuzz_pcd LIBS tagmap_io)
 tagmap_fuzz_target(fuzz_ply LIBS tagmap_io)
+tagmap_fuzz_target(fuzz_las LIBS tagmap_io)
 tagmap_fuzz_target(fuzz_lzf LIBS tagmap_io)
 tagmap_fuzz_target(fuzz_scene LIBS tagmap_sim)
 tagmap_fuzz_target(fuzz_config LIBS tagmap_detect)

@@ -61,6 +61,30 @@ class CellTable
 	uint32_t count_ = 0;
 };
 
+// The bounding box's size, each axis cut to 10x the samples' 1st-99th
+// percentile range beyond those percentiles: a few stray returns 2000 km off
+// would otherwise set the starting cell (and the floor below which no cell
+// is tried, 1e-6 of the extent) to metres. Real maps lie well inside the cut.
+Eigen::Vector3d robustExtent(const float* xs, const float* ys, const float* zs, const std::vector<size_t>& samples,
+							 const Eigen::Vector3d& lo, const Eigen::Vector3d& hi)
+{
+	Eigen::Vector3d ext = hi - lo;
+	if (samples.size() < 100) return ext;
+	const float* coords[3] = {xs, ys, zs};
+	std::vector<float> v(samples.size());
+	for (int a = 0; a < 3; a++)
+	{
+		for (size_t k = 0; k < samples.size(); k++) v[k] = coords[a][samples[k]];
+		const size_t k1 = v.size() / 100, k99 = v.size() - 1 - v.size() / 100;
+		std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k1), v.end());
+		const double q1 = v[k1];
+		std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k99), v.end());
+		const double q99 = v[k99], range = q99 - q1;
+		ext[a] = std::min(hi[a], q99 + 10 * range) - std::max(lo[a], q1 - 10 * range);
+	}
+	return ext;
+}
+
 enum class Pass
 {
 	Resolved,  // more than half the samples have their nearest neighbour within one cell
@@ -152,10 +176,10 @@ double estimatePointSpacing(const float* xs, const float* ys, const float* zs, s
 	threads = n < 65536 ? 1u : resolveThreads(threads);
 	Eigen::Vector3d lo, hi;
 	pointBounds(xs, ys, zs, n, threads, lo, hi);
-	const Eigen::Vector3d ext = (hi - lo).cwiseMax(1e-3);
 	const size_t stride = std::max<size_t>(1, n / p.samples);
 	std::vector<size_t> samples;
 	for (size_t i = stride / 2; i < n; i += stride) samples.push_back(i);
+	const Eigen::Vector3d ext = robustExtent(xs, ys, zs, samples, lo, hi).cwiseMax(1e-3);
 
 	// Any cell that resolves gives the same (exact) median, so the cell only
 	// decides how many passes it takes. Start from the spacing of a 1/64

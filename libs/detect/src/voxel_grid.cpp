@@ -93,12 +93,39 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 	// the box, so linear keys of neighbours never wrap into another row.
 	origin_ = lo - Eigen::Vector3d::Constant(2 * cellSize);
 	const Eigen::Vector3d cells = (hi - origin_) / cellSize;
-	if (cells.maxCoeff() > kMaxCells - 4)
-		throw std::invalid_argument("map extent " + std::to_string((hi - lo).maxCoeff()) + " m is too large for a " +
-									std::to_string(cellSize) + " m voxel (more than 2^20 voxels across)");
-	for (int a = 0; a < 3; a++) dims_[a] = static_cast<uint64_t>(std::floor(cells[a])) + 3;
+	const float* coords[3] = {xs, ys, zs};
+	for (int a = 0; a < 3; a++)
+	{
+		if (cells[a] <= kMaxCells - 4)
+		{
+			dims_[a] = static_cast<uint64_t>(std::floor(cells[a])) + 3;
+			continue;
+		}
+		// Too wide: number the occupied cells densely, gaps of 3+ cells
+		// shortened to 2 (still not adjacent). Only maps with far outliers
+		// or kilometres of fine cells get here.
+		Axis& ax = axis_[a];
+		ax.packed = true;
+		ax.real.resize(n);
+		parallelForBlocks(n, threads, [&](size_t b, size_t e) {
+			for (size_t i = b; i < e; i++) ax.real[i] = realCell(coords[a][i], a);
+		}, 1 << 16);
+		std::sort(ax.real.begin(), ax.real.end());
+		ax.real.erase(std::unique(ax.real.begin(), ax.real.end()), ax.real.end());
+		if (ax.real.size() > static_cast<size_t>(kMaxCells) * 512)
+			throw std::invalid_argument("too many distinct voxel rows for a " + std::to_string(cellSize) + " m voxel");
+		ax.key.resize(ax.real.size());
+		for (size_t k = 0; k < ax.real.size(); k++)
+			ax.key[k] = k == 0 ? 2 : ax.key[k - 1] + static_cast<int32_t>(std::min<int64_t>(ax.real[k] - ax.real[k - 1], 2));
+		dims_[a] = static_cast<uint64_t>(ax.key.empty() ? 2 : ax.key.back()) + 3;
+	}
+	uint64_t cellCount;
+	if (__builtin_mul_overflow(dims_[0], dims_[1], &cellCount) || __builtin_mul_overflow(cellCount, dims_[2], &cellCount) ||
+		cellCount > (uint64_t{1} << 63))
+		throw std::invalid_argument("the map's occupied voxels of " + std::to_string(cellSize) +
+									" m cannot be numbered in 64 bits");
 
-	const int keyBits = bitsFor(dims_[0] * dims_[1] * dims_[2] - 1);
+	const int keyBits = bitsFor(cellCount - 1);
 	const int idxBits = bitsFor(n > 0 ? n - 1 : 0);
 	auto keyOfPoint = [&](size_t i) { return linear(keyOf(Eigen::Vector3f(xs[i], ys[i], zs[i]))); };
 	order_.resize(n);
@@ -146,11 +173,26 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 	voxelStart_.shrink_to_fit();
 }
 
+int32_t VoxelGrid::Axis::keyOf(int64_t r) const
+{
+	if (!packed) return static_cast<int32_t>(std::clamp<int64_t>(r, INT32_MIN, INT32_MAX));
+	const size_t k = static_cast<size_t>(std::lower_bound(real.begin(), real.end(), r) - real.begin());
+	if (k < real.size() && real[k] == r) return key[k];
+	// Between occupied cells: the empty key after the lower one, which is
+	// adjacent to it only if the real cells are adjacent too. Below all: 1.
+	return k == 0 ? 1 : key[k - 1] + 1;
+}
+
+int64_t VoxelGrid::Axis::realOf(int32_t k) const
+{
+	if (!packed) return k;
+	const size_t j = static_cast<size_t>(std::upper_bound(key.begin(), key.end(), k) - key.begin());
+	return j == 0 ? real.front() - (key.front() - k) : real[j - 1] + (k - key[j - 1]);
+}
+
 VoxelKey VoxelGrid::keyOf(const Eigen::Vector3f& p) const
 {
-	return {static_cast<int32_t>(std::floor((p.x() - origin_.x()) / cellSize_)),
-			static_cast<int32_t>(std::floor((p.y() - origin_.y()) / cellSize_)),
-			static_cast<int32_t>(std::floor((p.z() - origin_.z()) / cellSize_))};
+	return {axis_[0].keyOf(realCell(p.x(), 0)), axis_[1].keyOf(realCell(p.y(), 1)), axis_[2].keyOf(realCell(p.z(), 2))};
 }
 
 VoxelKey VoxelGrid::keyOfVoxel(size_t voxel) const
@@ -162,7 +204,9 @@ VoxelKey VoxelGrid::keyOfVoxel(size_t voxel) const
 
 Eigen::Vector3d VoxelGrid::voxelCenter(const VoxelKey& k) const
 {
-	return origin_ + cellSize_ * Eigen::Vector3d(k.x + 0.5, k.y + 0.5, k.z + 0.5);
+	return origin_ + cellSize_ * Eigen::Vector3d(static_cast<double>(axis_[0].realOf(k.x)) + 0.5,
+												  static_cast<double>(axis_[1].realOf(k.y)) + 0.5,
+												  static_cast<double>(axis_[2].realOf(k.z)) + 0.5);
 }
 
 int64_t VoxelGrid::find(const VoxelKey& k) const

@@ -31,7 +31,7 @@ class RigidTransform
 	{
 		double g[3];
 		for (int r = 0; r < 3; ++r) g[r] = t_[r] + R_[r][0] * x + R_[r][1] * y + R_[r][2] * z;
-		fill.add(static_cast<float>(g[0]), static_cast<float>(g[1]), static_cast<float>(g[2]), intensity);
+		fill.add(g[0], g[1], g[2], intensity);
 	}
 
    private:

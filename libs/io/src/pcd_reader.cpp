@@ -263,7 +263,7 @@ void readAscii(const std::string& path, const FileBytes& bytes, const PcdHeader&
 		for (int a = 0; a < 4; ++a)
 			if (!parseNumber(tok[tokenOf[a]], v[a]))
 				throw InputError(path, lineAt(lineNo), "field " + h.fields[h.xyzi[a]].name + ": " + quoted(tok[tokenOf[a]]) + " is not a number");
-		fill.add(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]), static_cast<float>(v[3]));
+		fill.add(v[0], v[1], v[2], static_cast<float>(v[3]));
 		++done;
 	}
 	if (done != h.points)

@@ -178,10 +178,10 @@ class BinaryWalker
 	}
 
 	/** Reads one property value of record r (pos_ at the property). */
-	float value(const PlyElement& e, uint64_t r, const PlyProperty& p)
+	double value(const PlyElement& e, uint64_t r, const PlyProperty& p)
 	{
 		need(e, r, scalarSize(p.type));
-		const float v = loadScalar(p.type, bytes_.data() + pos_);
+		const double v = loadScalar(p.type, bytes_.data() + pos_);
 		pos_ += scalarSize(p.type);
 		return v;
 	}
@@ -264,14 +264,14 @@ void readBinaryVertices(const PlyHeader& h, const PlyElement& v, BinaryWalker& w
 	// Lists inside the vertex element: records differ in length, so walk them.
 	for (uint64_t r = 0; r < v.count; ++r)
 	{
-		float xyzi[4] = {0, 0, 0, 0};
+		double xyzi[4] = {0, 0, 0, 0};
 		for (size_t k = 0; k < v.props.size(); ++k)
 		{
 			const auto slot = std::find(std::begin(h.xyzi), std::end(h.xyzi), k);
 			if (slot == std::end(h.xyzi)) walk.skipProperty(v, r, v.props[k]);
 			else xyzi[slot - std::begin(h.xyzi)] = walk.value(v, r, v.props[k]);
 		}
-		fill.add(xyzi[0], xyzi[1], xyzi[2], xyzi[3]);
+		fill.add(xyzi[0], xyzi[1], xyzi[2], static_cast<float>(xyzi[3]));
 	}
 }
 
@@ -328,7 +328,7 @@ void readAscii(const std::string& path, const FileBytes& bytes, const PlyHeader&
 		}
 		if (t != tok.size())
 			throw InputError(path, lineAt(lineNo()), std::to_string(tok.size()) + " values, the vertex properties need " + std::to_string(t));
-		fill.add(static_cast<float>(xyzi[0]), static_cast<float>(xyzi[1]), static_cast<float>(xyzi[2]), static_cast<float>(xyzi[3]));
+		fill.add(xyzi[0], xyzi[1], xyzi[2], static_cast<float>(xyzi[3]));
 	}
 }
 

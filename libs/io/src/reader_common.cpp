@@ -56,7 +56,25 @@ void MapFiller::expect(size_t n)
 	map_.resize(capacity_);
 }
 
-void MapFiller::skip(float x, float y, float z, float intensity)
+void MapFiller::holdForOrigin(double x, double y, double z, float intensity)
+{
+	held_.emplace_back(x, y, z, intensity);
+	if (held_.size() == kOriginSample) fixOrigin();
+}
+
+void MapFiller::fixOrigin()
+{
+	std::vector<Eigen::Vector3d> sample;
+	sample.reserve(held_.size());
+	for (const auto& h : held_) sample.push_back(h.head<3>());
+	report_.origin = chooseLocalOrigin(std::move(sample));
+	report_.originFixed = true;
+	for (const auto& h : held_)
+		store(h.x() - report_.origin.x(), h.y() - report_.origin.y(), h.z() - report_.origin.z(), static_cast<float>(h.w()));
+	held_ = {};
+}
+
+void MapFiller::skip(double x, double y, double z, float intensity)
 {
 	if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z) && std::isfinite(intensity)) ++outOfRange_;
 	else ++nonFinite_;
@@ -66,6 +84,7 @@ void MapFiller::grow() { expect(std::max<size_t>(4096, (next_ - start_) / 2)); }
 
 void MapFiller::finish()
 {
+	if (!report_.originFixed) fixOrigin();
 	map_.resize(next_);
 	// setPointFast() leaves caches (kd-tree, bounding box) to the caller.
 	map_.mark_as_modified();
@@ -105,12 +124,13 @@ void extractColumns(const Column (&c)[4], size_t n, MapFiller& fill)
 	{
 		for (size_t k = 0; k < n; ++k)
 			fill.add(loadAs<float>(c[0].base + k * c[0].stride), loadAs<float>(c[1].base + k * c[1].stride),
-					 loadAs<float>(c[2].base + k * c[2].stride), loadAs<float>(c[3].base + k * c[3].stride));
+					 loadAs<float>(c[2].base + k * c[2].stride), static_cast<float>(loadAs<float>(c[3].base + k * c[3].stride)));
 		return;
 	}
 	for (size_t k = 0; k < n; ++k)
 		fill.add(loadScalar(c[0].type, c[0].base + k * c[0].stride), loadScalar(c[1].type, c[1].base + k * c[1].stride),
-				 loadScalar(c[2].type, c[2].base + k * c[2].stride), loadScalar(c[3].type, c[3].base + k * c[3].stride));
+				 loadScalar(c[2].type, c[2].base + k * c[2].stride),
+				 static_cast<float>(loadScalar(c[3].type, c[3].base + k * c[3].stride)));
 }
 
 const std::vector<std::string>& intensityFieldNames()

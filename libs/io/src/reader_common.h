@@ -5,6 +5,8 @@
 
 #include <mrpt/maps/CPointsMapXYZI.h>
 
+#include <Eigen/Core>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -41,8 +43,13 @@ class FileBytes
 	size_t size_ = 0;
 };
 
-/** Fills the map from its current end, skipping and counting non-finite
- *  and out-of-range (|coordinate| > kMaxAbsCoordinate) points. The map is
+/** Fills the map from its current end, in the local frame: every point is
+ *  read in double, the local origin (LoadReport::origin) is subtracted, and
+ *  only then is it stored as float, so georeferenced coordinates (UTM, ECEF)
+ *  keep millimetres. Non-finite points and points farther than
+ *  kMaxAbsCoordinate from the origin are skipped and counted. When the
+ *  caller fixed no origin, the first kOriginSample points are held back and
+ *  their rounded median becomes the origin (chooseLocalOrigin). The map is
  *  grown in large steps and trimmed in finish(), so the per-point path is a
  *  bounds check and four stores. */
 class MapFiller
@@ -53,11 +60,28 @@ class MapFiller
 	/** Room for `n` more points, so the next n add() calls never reallocate. */
 	void expect(size_t n);
 
-	void add(float x, float y, float z, float intensity)
+	void add(double x, double y, double z, float intensity)
 	{
 		// The count spans every observation of a .simplemap, not just this filler's.
 		if ((report_.pointsRead + ++read_) % LoadReport::kProgressPoints == 0 && report_.progress)
 			report_.progress(report_.pointsRead + read_);
+		if (!report_.originFixed)
+		{
+			holdForOrigin(x, y, z, intensity);
+			return;
+		}
+		store(x - report_.origin.x(), y - report_.origin.y(), z - report_.origin.z(), intensity);
+	}
+
+	/** Trims unused room and adds the counts to the report. */
+	void finish();
+
+	/** Points held back to choose the origin from. */
+	static constexpr size_t kOriginSample = 4096;
+
+   private:
+	void store(double x, double y, double z, float intensity)
+	{
 		// One comparison chain rejects NaN too; the rare rejects are sorted
 		// into non-finite and too-far off the fast path.
 		if (!(std::fabs(x) <= kMaxAbsCoordinate && std::fabs(y) <= kMaxAbsCoordinate &&
@@ -67,22 +91,20 @@ class MapFiller
 			return;
 		}
 		if (next_ == capacity_) grow();
-		map_.setPointFast(next_, x, y, z);
+		map_.setPointFast(next_, static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
 		map_.setPointColor_fast(next_, intensity, 0, 0);
 		++next_;
 	}
-
-	/** Trims unused room and adds the counts to the report. */
-	void finish();
-
-   private:
+	void holdForOrigin(double x, double y, double z, float intensity);
+	void fixOrigin();
 	void grow();
-	void skip(float x, float y, float z, float intensity);
+	void skip(double x, double y, double z, float intensity);
 
 	mrpt::maps::CPointsMapXYZI& map_;
 	LoadReport& report_;
 	size_t start_, next_, capacity_;
 	size_t read_ = 0, nonFinite_ = 0, outOfRange_ = 0;
+	std::vector<Eigen::Vector4d> held_;
 };
 
 enum class Scalar : uint8_t
@@ -102,14 +124,16 @@ enum class Scalar : uint8_t
 size_t scalarSize(Scalar t);
 
 template <typename T>
-inline float loadAs(const char* p)
+inline double loadAs(const char* p)
 {
 	T v;
 	std::memcpy(&v, p, sizeof(T));
-	return static_cast<float>(v);
+	return static_cast<double>(v);
 }
 
-inline float loadScalar(Scalar t, const char* p)
+/** A stored value in double: float64 coordinates keep their precision
+ *  until the local origin is subtracted. */
+inline double loadScalar(Scalar t, const char* p)
 {
 	switch (t)
 	{

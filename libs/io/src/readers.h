@@ -15,6 +15,7 @@ void readPly(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadRepor
 void readKitti(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 void readXyziText(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 void readSimplemap(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
+void readLas(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 void readRawlog(const std::string& path, mrpt::maps::CPointsMapXYZI& out, LoadReport& report);
 
 }  // namespace tagmap::io::detail

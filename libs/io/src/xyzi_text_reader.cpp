@@ -28,7 +28,7 @@ void readXyziText(const std::string& path, mrpt::maps::CPointsMapXYZI& out, Load
 		double v[4];
 		for (int a = 0; a < 4; ++a)
 			if (!parseNumber(tok[a], v[a])) throw InputError(path, lineAt(lines.lineNumber()), quoted(tok[a]) + " is not a number");
-		fill.add(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]), static_cast<float>(v[3]));
+		fill.add(v[0], v[1], v[2], static_cast<float>(v[3]));
 	}
 	fill.finish();
 	if (report.pointsRead == 0) throw InputError(path, "", bytes.size() == 0 ? "file is empty" : "no points in the file");

@@ -1,5 +1,6 @@
 #include "tagmap/mrpt/intensity_cloud.h"
 
+#include <mrpt/core/format.h>
 #include <mrpt/img/color_maps.h>
 
 #include <algorithm>
@@ -47,6 +48,9 @@ mrpt::opengl::CPointCloudColoured::Ptr makeIntensityCloud(const mrpt::maps::CPoi
 
 	auto cloud = mrpt::opengl::CPointCloudColoured::Create();
 	cloud->setPointSize(params.pointSize);
+	if (!params.localOrigin.isZero())
+		cloud->setName(mrpt::format("map (local frame: file = local + (%.3f, %.3f, %.3f) m)", params.localOrigin.x(),
+									params.localOrigin.y(), params.localOrigin.z()));
 	const auto& xs = map.getPointsBufferRef_x();
 	const auto& ys = map.getPointsBufferRef_y();
 	const auto& zs = map.getPointsBufferRef_z();

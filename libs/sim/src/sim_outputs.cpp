@@ -13,6 +13,7 @@
 #include "tagmap/atomic_file.h"
 #include "tagmap/errors.h"
 #include "tagmap/io/point_cloud_io.h"
+#include "tagmap/local_frame.h"
 #include "tagmap/tags_json.h"
 
 namespace tagmap::sim
@@ -28,7 +29,7 @@ mrpt::poses::CPose3D toMrpt(const Eigen::Isometry3d& T)
 }
 }  // namespace
 
-std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed)
+std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed, const Eigen::Vector3d& shift)
 {
 	std::ostringstream j;
 	j << "\"scene\": " << jsonQuote(out.sceneName) << ", \"seed\": " << seed
@@ -49,7 +50,8 @@ std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed)
 		j << (i ? ", " : "") << "{\"family\": " << jsonQuote(t.family) << ", \"id\": " << t.id << ", \"corners\": [";
 		for (int v = 0; v < 4; v++)
 		{
-			std::snprintf(num, sizeof num, "[%.6f, %.6f, %.6f]", t.corners[v].x(), t.corners[v].y(), t.corners[v].z());
+			const Eigen::Vector3d c = t.corners[v] + shift;
+			std::snprintf(num, sizeof num, "[%.6f, %.6f, %.6f]", c.x(), c.y(), c.z());
 			j << (v ? ", " : "") << num;
 		}
 		j << "]}";
@@ -105,8 +107,16 @@ void writeSimulationOutputs(const std::string& dir, const SimulationOutput& out,
 {
 	const std::filesystem::path d(dir);
 	checkOutputWritable((d / "map.pcd").string());
-	io::savePcdBinary((d / "map.pcd").string(), out.map);
-	writeTagsJson((d / "ground_truth.json").string(), out.truth, groundTruthMetadata(out, options.seed));
+	io::savePcdBinary((d / "map.pcd").string(), out.map, options.shift);
+	if (options.lasFormat >= 0)
+	{
+		io::LasWriteParams las;
+		las.pointFormat = options.lasFormat;
+		las.shift = options.shift;
+		io::saveLas((d / "map.las").string(), out.map, las);
+	}
+	writeTagsJson((d / "ground_truth.json").string(), translatedTags(out.truth, options.shift),
+				  groundTruthMetadata(out, options.seed, options.shift));
 	if (!options.simplemap) return;
 	const mrpt::maps::CSimpleMap sm = toSimpleMap(out);
 	writeFileAtomicallyByName((d / "scans.simplemap").string(), [&](const std::string& tmp) {

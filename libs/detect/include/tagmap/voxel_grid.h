@@ -4,10 +4,16 @@
 // handful of contiguous ranges. Built once per pipeline run with a parallel
 // LSD radix sort; no hash: a voxel's 26 neighbours come from a forward sweep
 // over the sorted keys (NeighbourSweep), a single key from a binary search.
+// No extent limit: an axis wider than 2^20 cells (a stray return 2000 km
+// off) is packed, its empty stretches of 3 or more cells shortened to 2, so
+// keys stay small, adjacency (+-1) and order are unchanged, and points far
+// from everything simply have no neighbours. Axes that fit are not packed,
+// so ordinary maps index exactly as before.
 #pragma once
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -29,7 +35,8 @@ class VoxelGrid
    public:
 	/** Buckets points (xs/ys/zs of length n) into voxels of edge `cellSize`,
 	 *  with `threads` threads (0: all cores; the result does not depend on it).
-	 *  Throws std::invalid_argument if the extent does not fit 2^20 cells. */
+	 *  Throws std::invalid_argument only if the occupied cells cannot be
+	 *  numbered in 64 bits even packed. */
 	VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize, unsigned threads = 0);
 
 	double cellSize() const { return cellSize_; }
@@ -83,13 +90,27 @@ class VoxelGrid
 	};
 
    private:
+	/** An axis's cell numbers: real cells (floor((p - origin) / cell))
+	 *  as they are, or, when packed, the sorted occupied real cells and the
+	 *  key each got. */
+	struct Axis
+	{
+		bool packed = false;
+		std::vector<int64_t> real;
+		std::vector<int32_t> key;
+		int32_t keyOf(int64_t r) const;
+		int64_t realOf(int32_t k) const;
+	};
+	int64_t realCell(double p, int a) const { return static_cast<int64_t>(std::floor((p - origin_[a]) / cellSize_)); }
+
 	uint64_t linear(const VoxelKey& k) const
 	{
 		return static_cast<uint64_t>(k.x) + dims_[0] * (static_cast<uint64_t>(k.y) + dims_[1] * static_cast<uint64_t>(k.z));
 	}
 	double cellSize_;
 	Eigen::Vector3d origin_;
-	uint64_t dims_[3] = {1, 1, 1};  // cells per axis, with a slack of 2 on either side
+	Axis axis_[3];
+	uint64_t dims_[3] = {1, 1, 1};  // cells (keys) per axis, with a slack of 2 on either side
 	std::vector<uint32_t> order_;  // point indices sorted by voxel
 	std::vector<uint32_t> voxelStart_;  // voxel v owns order_[voxelStart_[v], voxelStart_[v+1])
 	std::vector<uint64_t> keys_;  // linear key of each voxel, ascending

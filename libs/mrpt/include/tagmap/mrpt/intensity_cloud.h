@@ -5,6 +5,7 @@
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/opengl/CPointCloudColoured.h>
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "tagmap/tag_detection.h"
@@ -15,6 +16,11 @@ struct IntensityCloudParams
 {
 	float pointSize = 2.0f;
 	size_t maxPoints = 2000000;  // decimate beyond this to keep viewers responsive
+	/** The map's local origin (io::LoadReport::origin): MRPT stores the
+	 *  cloud's points as float, so they stay in the local frame and a
+	 *  non-zero origin is written in the cloud's name, "map (local frame:
+	 *  file = local + (x, y, z) m)", for the viewer's object list. */
+	Eigen::Vector3d localOrigin = Eigen::Vector3d::Zero();
 };
 
 /** Points in map coordinates; intensity mapped to a jet colour map over the

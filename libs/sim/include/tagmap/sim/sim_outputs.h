@@ -6,6 +6,7 @@
 
 #include <mrpt/maps/CSimpleMap.h>
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
 
@@ -17,6 +18,12 @@ struct WriteOptions
 {
 	bool simplemap = false;
 	uint64_t seed = 0;  // recorded in the metadata
+	/** Also DIR/map.las in this LAS point format (0..10); -1: none. */
+	int lasFormat = -1;
+	/** Added to map.pcd (then float64 x y z), map.las and ground_truth.json:
+	 *  a georeferenced copy of the scene (e.g. UTM), for testing large
+	 *  coordinates. The simplemap and trajectories stay unshifted. */
+	Eigen::Vector3d shift = Eigen::Vector3d::Zero();
 };
 
 /** Creates `dir` if needed; every file is written atomically. Throws InputError
@@ -25,7 +32,8 @@ void writeSimulationOutputs(const std::string& dir, const SimulationOutput& out,
 
 /** Extra top-level JSON fields describing the run (points, sensors, frames,
  *  points per tag...), for writeTagsJson. */
-std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed);
+std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed,
+								const Eigen::Vector3d& shift = Eigen::Vector3d::Zero());
 
 /** One keyframe per frame: a CObservationPointCloud whose CPointsMapXYZI is in
  *  the sensor frame, at the frame's drifted pose (what a SLAM map holds). */
