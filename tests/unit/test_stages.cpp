@@ -67,34 +67,6 @@ TEST(IntensityGradient, RangeNoiseOnAPlainWallIsNoEdge)
 	EXPECT_LT(kept.size(), 10u);
 }
 
-// A sparse scan of a plain wall with noisy intensities: about 8 neighbours
-// within a 1.6 cm radius, where noise alone often explains R^2 >= 0.3 and
-// gives a steep slope. Without the noise-chance bound such points became
-// edges all over the wall; with it they go to the next radius level, where
-// 9x the neighbours tell they are noise. A real edge is still kept there.
-TEST(IntensityGradient, SparseNoisyWallIsNoEdgeButItsStepIs)
-{
-	auto keptAt = [](const Patch& p, double noiseChance) {
-		const VoxelGrid grid(p.x.data(), p.y.data(), p.z.data(), p.x.size(), 0.016, 1);
-		IntensityGradientParams params;
-		params.noiseChance = noiseChance;
-		params.densityLevels = 1;
-		return filterByIntensityGradient(p.x.data(), p.y.data(), p.z.data(), p.i.data(), grid, params, 1, 0.2);
-	};
-	const Patch plain = makePatch(0.002, 0.2, 0.05);
-	const size_t unbounded = keptAt(plain, 0.0).keptPoints.size();  // noise taken for edges
-	const auto bounded = keptAt(plain, 0.01);
-	EXPECT_GT(unbounded, 200u);
-	EXPECT_LT(bounded.keptPoints.size(), unbounded / 4) << unbounded;  // about the 1% chance asked for
-	EXPECT_GT(bounded.sparsePoints.size(), 1000u);	// handed to the next level
-	// At 3x the radius (the next level), the step between 0.2 and 0.6 is kept.
-	const Patch step = makePatch(0.002, 0.6, 0.05);
-	const VoxelGrid coarse(step.x.data(), step.y.data(), step.z.data(), step.x.size(), 0.048, 1);
-	const auto edge = filterByIntensityGradient(step.x.data(), step.y.data(), step.z.data(), step.i.data(), coarse, {}, 1, 0.4);
-	ASSERT_FALSE(edge.keptPoints.empty());
-	for (uint32_t k : edge.keptPoints) EXPECT_LE(std::abs(int(k % 100) - 49.5), 6.0) << "kept point in column " << k % 100;
-}
-
 TEST(CandidateFilter, PaperCriteria)
 {
 	CandidateFilterParams p;

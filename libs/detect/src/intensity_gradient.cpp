@@ -48,7 +48,6 @@ struct SurfaceSlope
 {
 	double norm = 0;  // |A|
 	double explained = 0;  // variance of A^T x: the part of var(I) the slope explains
-	int directions = 0;  // principal directions the slope was solved along (1-3)
 };
 
 /** The least-squares slope A = C^-1 c (C: covariance of the neighbours'
@@ -74,7 +73,6 @@ SurfaceSlope surfaceSlope(const Eigen::Matrix3d& C, const Eigen::Vector3d& c)
 		const double proj = es.eigenvectors().col(k).dot(c);
 		norm2 += proj * proj / (lambda(k) * lambda(k));
 		out.explained += proj * proj / lambda(k);
-		out.directions++;
 	}
 	out.norm = std::sqrt(norm2);
 	return out;
@@ -87,7 +85,7 @@ SurfaceSlope surfaceSlope(const Eigen::Matrix3d& C, const Eigen::Vector3d& c)
 // points per step in a fixed order, so the result is the same on any
 // thread; a point outside r adds exact zeros (no branch per neighbour).
 double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, const Span* spans, int spanCount,
-					double radius, int minNeighbours, double minExplained, double noiseChance)
+					double radius, int minNeighbours, double minExplained)
 {
 	const float cx = centre.x(), cy = centre.y(), cz = centre.z(), r2 = static_cast<float>(radius * radius);
 	const Float4 vcx = {cx, cx, cx, cx}, vcy = {cy, cy, cy, cy}, vcz = {cz, cz, cz, cz}, vr2 = {r2, r2, r2, r2};
@@ -150,16 +148,6 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 	// merged from two viewpoints at different ranges, speckle) give a
 	// slope from noise that explains little. Scale free, like the slope test.
 	if (varI <= 0 || slope.explained < minExplained * varI) return 0;
-	// Few neighbours fit noise well: with k slope directions and N points,
-	// pure noise explains R^2 ~ Beta(k/2, (N-k-1)/2) of the variance, whose
-	// tail for k = 2 is P(R^2 >= x) = (1-x)^((N-3)/2). Six noisy neighbours
-	// pass R^2 >= 0.3 more often than not, and in a sparse, noisy scan
-	// (a Livox at 7 m, 2-3 cm noise) whole walls became "edges" and one
-	// cluster. Below the R^2 that noise reaches with chance `noiseChance`,
-	// the point is too sparse at this radius to tell: it is retried at the
-	// next density level, with about 9x the neighbours.
-	const int dof = count - slope.directions - 1;
-	if (noiseChance > 0 && (dof < 1 || slope.explained < (1 - std::pow(noiseChance, 2.0 / dof)) * varI)) return -1;
 	return slope.norm;
 }
 
@@ -230,13 +218,12 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre's key then.
 			const Eigen::Vector3f probe = grid.keyOf(c) == grid.keyOfVoxel(v) ? c : mid;
 			// 1.5 r: an edge anywhere in the voxel is within reach of the centroid.
-			const double coarse = gradientNorm(probe, sorted, spans, spanCount, 1.5 * grid.cellSize(), p.minNeighbours, 0.0, 0.0);
+			const double coarse = gradientNorm(probe, sorted, spans, spanCount, 1.5 * grid.cellSize(), p.minNeighbours, 0.0);
 			if (coarse >= 0 && coarse < 0.5 * cut) continue;
 			for (size_t k = first; k < last; k++)
 			{
 				const Eigen::Vector3f q(sorted.x[k], sorted.y[k], sorted.z[k]);
-				const double g = gradientNorm(q, sorted, spans, spanCount, grid.cellSize(), p.minNeighbours, p.minExplained,
-											  p.noiseChance);
+				const double g = gradientNorm(q, sorted, spans, spanCount, grid.cellSize(), p.minNeighbours, p.minExplained);
 				keep[order[k]] = g < 0 ? kSparse : (g >= cut ? kKeep : kDrop);
 			}
 		}

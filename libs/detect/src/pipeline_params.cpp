@@ -56,7 +56,6 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"image_variants", bind(p.imageVariants)}}},
 		{"gradient", {{"threshold", bind(p.gradient.threshold)}, {"min_neighbours", bind(p.gradient.minNeighbours)},
 		  {"min_explained", bind(p.gradient.minExplained)},
-		  {"noise_chance", bind(p.gradient.noiseChance)},
 		  {"density_levels", bind(p.gradient.densityLevels)}}},
 		{"clustering",
 		 {{"tolerance_spacings", bind(p.clustering.toleranceSpacings)},
@@ -215,8 +214,6 @@ void PipelineParams::validate() const
 		throw std::invalid_argument("gradient.density_levels must be 1..6");
 	if (!(gradient.minExplained >= 0 && gradient.minExplained < 1))
 		throw std::invalid_argument("gradient.min_explained must be in [0, 1)");
-	if (!(gradient.noiseChance >= 0 && gradient.noiseChance < 1))
-		throw std::invalid_argument("gradient.noise_chance must be in [0, 1)");
 	positive(clustering.toleranceSpacings, "clustering.tolerance_spacings");
 	if (clustering.scales.empty()) throw std::invalid_argument("clustering.scales must not be empty");
 	for (double sc : clustering.scales) positive(sc, "clustering.scales entries");

@@ -26,11 +26,6 @@ struct IntensityGradientParams
 	 *  intensity variance around it (R^2): edges do, noise and points of a
 	 *  surface merged from viewpoints at different ranges do not. */
 	double minExplained = 0.3;
-	/** ... and more than noise explains by chance with that many
-	 *  neighbours, at this chance (R^2 of noise is Beta-distributed; with
-	 *  30 neighbours the bound is 0.29, with 10 it is 0.73). A point that
-	 *  fails only this is retried at the next density level. 0: off. */
-	double noiseChance = 0.01;
 	/** Radius levels (1x, 3x, 9x ...) for points too sparse at the finer
 	 *  one; 1 disables the sparse levels. */
 	int densityLevels = 3;
