@@ -45,7 +45,7 @@ IntensityGradientResult gradientOf(const Patch& p)
 {
 	const VoxelGrid grid(p.x.data(), p.y.data(), p.z.data(), p.x.size(), 0.025, 1);
 	// The spread is the map's; a plain patch has none, so give a typical one.
-	return filterByIntensityGradient(p.x.data(), p.y.data(), p.z.data(), p.i.data(), grid, {}, 1, 0.2);
+	return filterByIntensityGradient(p.x.data(), p.y.data(), p.z.data(), p.i.data(), grid, 0.025, {}, 1, 0.2);
 }
 }  // namespace
 

@@ -153,8 +153,8 @@ size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, cons
 		for (size_t k = 0; k < subset.size(); k++)
 			sx[k] = m.xs[subset[k]], sy[k] = m.ys[subset[k]], sz[k] = m.zs[subset[k]], si[k] = m.is[subset[k]];
 		const VoxelGrid subGrid(sx.data(), sy.data(), sz.data(), subset.size(), levelScale * len.voxelCell, threads);
-		level = filterByIntensityGradient(sx.data(), sy.data(), sz.data(), si.data(), subGrid, p.gradient, threads,
-										  level.intensitySpread);
+		level = filterByIntensityGradient(sx.data(), sy.data(), sz.data(), si.data(), subGrid,
+										  levelScale * len.gradientRadius, p.gradient, threads, level.intensitySpread);
 		for (auto* v : {&level.keptPoints, &level.sparsePoints})
 			for (auto& k : *v) k = subset[k];  // back to map indices (still ascending)
 		kept += level.keptPoints.size();
@@ -316,6 +316,7 @@ class CandidateDecoder
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		PatternRefinementParams rp = p_.refinement;
 		rp.estimateSize = p_.tagSize <= 0;
+		rp.footprintSpacings = p_.plane.splatSpacings;
 		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return Verdict::PatternMismatch;
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for
@@ -422,7 +423,8 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		return VoxelGrid(m.xs, m.ys, m.zs, m.n, len.voxelCell, threads);
 	});
 	IntensityGradientResult edges = stage.run("intensity_gradient", m.n, [&](const CountProgressFn& count) {
-		return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads, 0, count);
+		return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, len.gradientRadius, params_.gradient, threads, 0,
+										 count);
 	});
 	std::vector<Cluster> clusters;
 	stage.run("clustering", edges.keptPoints.size(), [&] {
