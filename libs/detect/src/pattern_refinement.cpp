@@ -14,6 +14,14 @@ namespace
 /** The bitmap model's resolution: 8 px per cell resolves a blur of a
  *  tenth of a cell and keeps bilinear sampling smooth within a cell. */
 constexpr int kPxPerCell = 8;
+/** The blur each point's own footprint puts on the pattern, as a Gaussian
+ *  sigma in local point spacings. The same number as plane.splat_spacings'
+ *  default, but not that parameter: splat_spacings is how the image is
+ *  rendered (users raise it to fill holes in sparse maps), this is how the
+ *  points sample the tag; following splat_spacings changed the results of
+ *  any configuration that sets it (tested at 0.9: accuracy and presenters
+ *  JSON differ). */
+constexpr double kPointFootprintSpacings = 0.6;
 /** Smallest blur applied to the model, in model pixels: OpenCV's kernel
  *  is a no-op below ~0.3 px, and the model must stay a smooth function. */
 constexpr double kMinBlurPx = 0.3;
@@ -97,13 +105,12 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 {
 	const TagBitmap bm = renderTagBitmap(t.family, t.id);
 	const double cell0 = t.size / bm.borderCells;
-	// The points' own footprint blurs the pattern by about the splat sigma
-	// the image is rendered with (plane.splat_spacings); a map merged from
+	// The points' own footprint blurs the pattern; a map merged from
 	// drifting or badly deskewed views blurs it more (cells smeared over a
 	// neighbour). The model takes the blur that fits the points best at the
 	// decoded pose, so a blurred tag is judged against a blurred bitmap, not
 	// a sharp one.
-	const double footprint = p.footprintSpacings * plane.localSpacing / cell0;
+	const double footprint = kPointFootprintSpacings * plane.localSpacing / cell0;
 	std::vector<PatternModel> models;
 	for (double blur : {footprint, std::max(footprint, kSmearedBlurCells[0]), std::max(footprint, kSmearedBlurCells[1])})
 		if (models.empty() || blur > 0) models.emplace_back(bm, blur);

@@ -316,7 +316,6 @@ class CandidateDecoder
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		PatternRefinementParams rp = p_.refinement;
 		rp.estimateSize = p_.tagSize <= 0;
-		rp.footprintSpacings = p_.plane.splatSpacings;
 		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return Verdict::PatternMismatch;
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for

@@ -20,10 +20,6 @@ struct PatternRefinementParams
 	int iterations = 12;
 	/** Let the size float too (when --tag-size is not given). */
 	bool estimateSize = true;
-	/** Each point's footprint on the pattern, in local point spacings (a
-	 *  Gaussian sigma): the pipeline sets it to plane.splat_spacings, the
-	 *  footprint the image is rendered with. */
-	double footprintSpacings = 0.6;
 };
 
 /** Updates t.pose, t.corners, t.size (if estimated), t.patternFit and the
