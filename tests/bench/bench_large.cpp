@@ -169,7 +169,7 @@ int measure(const Options& o, size_t n)
 		cpuBefore = cpu;
 	}
 	std::map<std::string, int> verdicts;
-	for (const auto& c : found.candidates) verdicts[c.verdict]++;
+	for (const auto& c : found.candidates) verdicts[tagmap::verdictName(c.verdict)]++;
 	const std::string jsonPath = dir + "/detections.json";
 	tagmap::writeTagsJson(jsonPath, found.tags);
 	const auto t3 = Clock::now();

@@ -48,7 +48,7 @@ IntensityGradientResult gradientOf(const Patch& p)
 {
 	const VoxelGrid grid(p.x.data(), p.y.data(), p.z.data(), p.x.size(), 0.025, 1);
 	// The spread is the map's; a plain patch has none, so give a typical one.
-	return filterByIntensityGradient(p.x.data(), p.y.data(), p.z.data(), p.i.data(), grid, {}, 1, 0.2);
+	return filterByIntensityGradient(p.x.data(), p.y.data(), p.z.data(), p.i.data(), grid, 0.025, {}, 1, 0.2);
 }
 }  // namespace
 
@@ -73,13 +73,13 @@ TEST(CandidateFilter, PaperCriteria)
 	p.tagSize = 0.2;
 	OrientedBox box;
 	box.extent = {0.22, 0.2, 0.005};
-	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "");
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), std::nullopt);
 	box.extent = {0.05, 0.05, 0.001};
-	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "size");
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::Size);
 	box.extent = {0.36, 0.2, 0.005};
-	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "squareness");
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::Squareness);
 	box.extent = {0.22, 0.2, 0.15};
-	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), "not_flat");
+	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::NotFlat);
 }
 
 // The noise every flatness test is measured against: a 1 m patch on a 1 cm
@@ -122,12 +122,12 @@ TEST(CandidateFilter, NoisyFlatSheetIsFlatAndACornerIsNot)
 	CandidateFilterParams p;
 	const OrientedBox flat = fitOrientedBox(x.data(), y.data(), z.data(), all);
 	EXPECT_GT(flat.extent.z(), 0.35 * flat.extent.y() + 2 * 3 * sigma * 0.5);	// the extremes alone would fail
-	EXPECT_EQ(rejectCandidate(flat, 0.03, 3 * sigma, p), "");
+	EXPECT_EQ(rejectCandidate(flat, 0.03, 3 * sigma, p), std::nullopt);
 	sheet(true);
 	all.resize(x.size());
 	for (uint32_t k = 0; k < all.size(); k++) all[k] = k;
 	const OrientedBox corner = fitOrientedBox(x.data(), y.data(), z.data(), all);
-	EXPECT_EQ(rejectCandidate(corner, 0.03, 0.002, p), "not_flat");
+	EXPECT_EQ(rejectCandidate(corner, 0.03, 0.002, p), Verdict::NotFlat);
 }
 
 // The tag's normal from the wall around it: a 0.2 m tag on a wall with
@@ -187,7 +187,7 @@ TEST(CandidateFilter, ElongatedBoxIsTriedAsSquareWindows)
 	ASSERT_EQ(windows.size(), 5u);  // every 0.1 m from one end to the other
 	EXPECT_NEAR(windows.front().center.x(), 0.8, 1e-9);
 	EXPECT_NEAR(windows.back().center.x(), 1.2, 1e-9);
-	for (const auto& w : windows) EXPECT_EQ(rejectCandidate(w, 0.01, 0.002, p), "");
+	for (const auto& w : windows) EXPECT_EQ(rejectCandidate(w, 0.01, 0.002, p), std::nullopt);
 	box.extent = {2.0, 0.2, 0.005};  // beyond split_aspect: a pillar's edges from floor to roof
 	EXPECT_TRUE(squareWindows(box, 0.01, 0.002, p).empty());
 	// ... where a tag is, its square holds many more of the cluster's
@@ -309,7 +309,7 @@ TEST(ReadEvidence, CleanStrongTagIsAcceptedOnAPlainWhiteWall)
 	const ReadEvidence e = assessRead(d.img, d.read, 8, kEveryFamily, {});
 	EXPECT_EQ(e.bitErrors, 0);
 	EXPECT_EQ(e.codeBits, 36);
-	EXPECT_EQ(e.rejection, "");
+	EXPECT_EQ(e.rejection, std::nullopt);
 }
 
 TEST(ReadEvidence, WeakFamilyIsChanceAmongEveryFamilyButNotAloneWithItsBudget)
@@ -317,10 +317,10 @@ TEST(ReadEvidence, WeakFamilyIsChanceAmongEveryFamilyButNotAloneWithItsBudget)
 	// An exact aruco_4x4_50 read: among every family, a random pattern does
 	// as well too often; asked for alone with a budget of 1 in 100 it passes.
 	const DrawnRead d = drawTag("aruco_4x4_50", 3, [](int, int) { return uint8_t(220); });
-	EXPECT_EQ(assessRead(d.img, d.read, 8, kEveryFamily, {}).rejection, "by_chance");
+	EXPECT_EQ(assessRead(d.img, d.read, 8, kEveryFamily, {}).rejection, Verdict::ByChance);
 	ReadEvidenceParams alone;
 	alone.chanceBudget = 0.01;
-	EXPECT_EQ(assessRead(d.img, d.read, 8, {"aruco_4x4_50"}, alone).rejection, "");
+	EXPECT_EQ(assessRead(d.img, d.read, 8, {"aruco_4x4_50"}, alone).rejection, std::nullopt);
 }
 
 TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)
@@ -334,7 +334,7 @@ TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)
 	inner.id = 0;
 	const Eigen::Vector2d c = 0.25 * (tag.read.corners[0] + tag.read.corners[1] + tag.read.corners[2] + tag.read.corners[3]);
 	for (auto& p : inner.corners) p = c + 0.75 * (p - c);  // 6 of the 8 border cells
-	EXPECT_NE(assessRead(tag.img, inner, 8, kEveryFamily, {}).rejection, "");
+	EXPECT_NE(assessRead(tag.img, inner, 8, kEveryFamily, {}).rejection, std::nullopt);
 }
 
 TEST(ReadEvidence, WindowGridHasNoQuietZone)
@@ -354,5 +354,5 @@ TEST(ReadEvidence, WindowGridHasNoQuietZone)
 								gc >= bm.borderStart + bm.borderCells);
 			if (quiet && (r % 24 < 6 || c % 24 < 6)) grid.img.at<uint8_t>(r, c) = 25;
 		}
-	EXPECT_EQ(assessRead(grid.img, grid.read, 8, kEveryFamily, {}).rejection, "no_quiet_zone");
+	EXPECT_EQ(assessRead(grid.img, grid.read, 8, kEveryFamily, {}).rejection, Verdict::NoQuietZone);
 }

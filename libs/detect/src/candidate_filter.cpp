@@ -5,7 +5,7 @@
 
 namespace tagmap
 {
-std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p)
+std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p)
 {
 	const double l = box.extent.x(), w = box.extent.y();
 	const double h = box.thickness > 0 ? box.thickness : box.extent.z();
@@ -14,10 +14,10 @@ std::string rejectCandidate(const OrientedBox& box, double band, double noise, c
 	// Paper's criterion 1 in the tag plane: a*sqrt(2) <= diag <= 2a; the
 	// kept edge band widens the box by up to `band` on every side.
 	const double diag = std::hypot(l, w);
-	if (diag < std::sqrt(2.0) * aMin * (1 - p.shortfall) || diag > p.maxOversize * 2 * (aMax + 2 * band)) return "size";
-	if (w <= 0 || l / w > p.maxAspect) return "squareness";
-	if (h > p.maxFlatness * w + 2 * noise) return "not_flat";
-	return "";
+	if (diag < std::sqrt(2.0) * aMin * (1 - p.shortfall) || diag > p.maxOversize * 2 * (aMax + 2 * band)) return Verdict::Size;
+	if (w <= 0 || l / w > p.maxAspect) return Verdict::Squareness;
+	if (h > p.maxFlatness * w + 2 * noise) return Verdict::NotFlat;
+	return std::nullopt;
 }
 
 std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p,
@@ -30,7 +30,7 @@ std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, doub
 	if (longLine && along.empty()) return out;
 	OrientedBox window = box;
 	window.extent.x() = w;
-	if (!rejectCandidate(window, band, noise, p).empty()) return out;
+	if (rejectCandidate(window, band, noise, p)) return out;
 	// Half-overlapping windows from one end to the other, the last one
 	// flush with the far end.
 	const int steps = static_cast<int>(std::ceil((l - w) / (0.5 * w)));

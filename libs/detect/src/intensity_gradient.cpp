@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "tagmap/parallel.h"
 
@@ -154,15 +155,17 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 }  // namespace
 
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
-												  const VoxelGrid& grid, const IntensityGradientParams& p,
+												  const VoxelGrid& grid, double radius, const IntensityGradientParams& p,
 												  unsigned threads, double spread, const CountProgressFn& progress)
 {
+	if (!(radius > 0 && radius <= grid.cellSize()))
+		throw std::invalid_argument("filterByIntensityGradient: the radius must be positive and at most the grid's cell");
 	IntensityGradientResult out;
 	const size_t n = grid.pointCount();
 	threads = resolveThreads(threads);
 	out.intensitySpread = spread > 0 ? spread : robustIntensitySpread(is, n);
 	if (out.intensitySpread <= 0 || n == 0) return out;
-	const double cut = p.threshold * out.intensitySpread / grid.cellSize();
+	const double cut = p.threshold * out.intensitySpread / radius;
 
 	// The points in voxel order: a voxel's 3x3x3 block is then nine
 	// contiguous runs (one per row), read by a forward sweep, instead of 27
@@ -218,12 +221,12 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre's key then.
 			const Eigen::Vector3f probe = grid.keyOf(c) == grid.keyOfVoxel(v) ? c : mid;
 			// 1.5 r: an edge anywhere in the voxel is within reach of the centroid.
-			const double coarse = gradientNorm(probe, sorted, spans, spanCount, 1.5 * grid.cellSize(), p.minNeighbours, 0.0);
+			const double coarse = gradientNorm(probe, sorted, spans, spanCount, 1.5 * radius, p.minNeighbours, 0.0);
 			if (coarse >= 0 && coarse < 0.5 * cut) continue;
 			for (size_t k = first; k < last; k++)
 			{
 				const Eigen::Vector3f q(sorted.x[k], sorted.y[k], sorted.z[k]);
-				const double g = gradientNorm(q, sorted, spans, spanCount, grid.cellSize(), p.minNeighbours, p.minExplained);
+				const double g = gradientNorm(q, sorted, spans, spanCount, radius, p.minNeighbours, p.minExplained);
 				keep[order[k]] = g < 0 ? kSparse : (g >= cut ? kKeep : kDrop);
 			}
 		}

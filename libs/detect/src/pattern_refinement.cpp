@@ -11,7 +11,42 @@ namespace tagmap
 {
 namespace
 {
+/** The bitmap model's resolution: 8 px per cell resolves a blur of a
+ *  tenth of a cell and keeps bilinear sampling smooth within a cell. */
 constexpr int kPxPerCell = 8;
+/** The blur each point's own footprint puts on the pattern, as a Gaussian
+ *  sigma in local point spacings. The same number as plane.splat_spacings'
+ *  default, but not that parameter: splat_spacings is how the image is
+ *  rendered (users raise it to fill holes in sparse maps), this is how the
+ *  points sample the tag; following splat_spacings changed the results of
+ *  any configuration that sets it (tested at 0.9: accuracy and presenters
+ *  JSON differ). */
+constexpr double kPointFootprintSpacings = 0.6;
+/** Smallest blur applied to the model, in model pixels: OpenCV's kernel
+ *  is a no-op below ~0.3 px, and the model must stay a smooth function. */
+constexpr double kMinBlurPx = 0.3;
+/** Fewer points on the tag's grid than this and a correlation (and a fit
+ *  of 3-4 pose parameters with a gain and an offset) means nothing: the
+ *  decoded square lies mostly off the points. */
+constexpr size_t kMinPoints = 20;
+/** Blurs tried besides the points' own footprint, in cells: a map merged
+ *  from drifting or badly deskewed views smears a cell over about a third,
+ *  or about two thirds, of its neighbour (the motion-blurred parking tags). */
+constexpr double kSmearedBlurCells[] = {0.35, 0.7};
+/** Points are taken up to this fraction of the half grid from the centre:
+ *  a little beyond it, as the decoded pose may be off by a few percent. */
+constexpr double kReachMargin = 1.05;
+/** Levenberg-Marquardt: damping at the start, its floor, how it falls after
+ *  a step that lowered the cost and grows after one that did not, and how
+ *  many damped steps are tried per iteration before the fit stops (6
+ *  failures raise the damping 8^6 ~ 2.6e5 times: the step is then a
+ *  vanishing gradient step). */
+constexpr double kInitialDamping = 1e-3, kMinDamping = 1e-6, kDampingDown = 4, kDampingUp = 8;
+constexpr int kDampedTries = 6;
+/** Numeric Jacobian steps: a small angle and scale change (0.002: 0.1 deg,
+ *  0.2 %), a twentieth of a cell in position; well above the residuals'
+ *  float noise, well below a cell. */
+constexpr double kAngleStep = 0.002, kShiftStepCells = 0.05, kLogScaleStep = 0.002;
 
 // The bitmap as a smooth function of tag-plane coordinates: upsampled and
 // blurred by the point footprint, so the fit has gradients to follow.
@@ -31,7 +66,7 @@ struct PatternModel
 		cv::Mat big;
 		cv::resize(small, big, cv::Size(), kPxPerCell, kPxPerCell, cv::INTER_NEAREST);
 		big.convertTo(img, CV_32F, 1.0 / 255);
-		const double s = std::max(0.3, blurCells * kPxPerCell);
+		const double s = std::max(kMinBlurPx, blurCells * kPxPerCell);
 		cv::GaussianBlur(img, img, cv::Size(), s, s, cv::BORDER_REPLICATE);
 	}
 
@@ -70,21 +105,21 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 {
 	const TagBitmap bm = renderTagBitmap(t.family, t.id);
 	const double cell0 = t.size / bm.borderCells;
-	// The points' own footprint blurs the pattern by about 0.6 spacings;
-	// a map merged from drifting or badly deskewed views blurs it more
-	// (cells smeared over a neighbour). The model takes the blur that fits
-	// the points best at the decoded pose, so a blurred tag is judged
-	// against a blurred bitmap, not a sharp one.
-	const double footprint = 0.6 * plane.localSpacing / cell0;
+	// The points' own footprint blurs the pattern; a map merged from
+	// drifting or badly deskewed views blurs it more (cells smeared over a
+	// neighbour). The model takes the blur that fits the points best at the
+	// decoded pose, so a blurred tag is judged against a blurred bitmap, not
+	// a sharp one.
+	const double footprint = kPointFootprintSpacings * plane.localSpacing / cell0;
 	std::vector<PatternModel> models;
-	for (double blur : {footprint, std::max(footprint, 0.35), std::max(footprint, 0.7)})
+	for (double blur : {footprint, std::max(footprint, kSmearedBlurCells[0]), std::max(footprint, kSmearedBlurCells[1])})
 		if (models.empty() || blur > 0) models.emplace_back(bm, blur);
 
 	// Tag-plane coordinates of the inliers in the initial tag frame.
 	const Eigen::Isometry3d T0 = t.pose;
 	std::vector<Eigen::Vector2d> q;
 	std::vector<double> I;
-	const double reach = 0.5 * bm.cells * cell0 * 1.05;
+	const double reach = 0.5 * bm.cells * cell0 * kReachMargin;
 	for (uint32_t i : plane.inliers)
 	{
 		const Eigen::Vector3d l = T0.inverse() * Eigen::Vector3d(xs[i], ys[i], zs[i]);
@@ -92,7 +127,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		q.emplace_back(l.x(), l.y());
 		I.push_back(is[i]);
 	}
-	if (q.size() < 20) return false;
+	if (q.size() < kMinPoints) return false;
 
 	// Residuals with the intensity gain and offset solved in closed form.
 	const PatternModel* model = &models.front();
@@ -120,7 +155,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 			sII += I[k] * I[k];
 			e.used++;
 		}
-		if (e.used < 20) return e;
+		if (e.used < kMinPoints) return e;
 		const double n = static_cast<double>(e.used);
 		const double vm = smm / n - (sm / n) * (sm / n), vI = sII / n - (sI / n) * (sI / n);
 		const double cov = smI / n - (sm / n) * (sI / n);
@@ -145,15 +180,15 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		if (best.used == 0 || e.correlation > best.correlation) best = e, chosen = &candidate;
 	}
 	model = chosen;
-	if (best.used < 20)  // the decoded square lies mostly off the points
+	if (best.used < kMinPoints)
 	{
 		t.patternFit = 0;
 		return false;
 	}
 	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
-	// logScale); steps of a small angle / a twentieth of a cell.
+	// logScale).
 	auto jacobian = [&](const FitState& at, const Eigen::VectorXd& r0, int n) {
-		const double steps[4] = {0.002, 0.05 * cell0, 0.05 * cell0, 0.002};
+		const double steps[4] = {kAngleStep, kShiftStepCells * cell0, kShiftStepCells * cell0, kLogScaleStep};
 		Eigen::MatrixXd J(r0.size(), n);
 		for (int j = 0; j < n; j++)
 		{
@@ -167,14 +202,14 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	if (p.refine)
 	{
 		const int nParams = p.estimateSize ? 4 : 3;
-		double lambda = 1e-3;
+		double lambda = kInitialDamping;
 		for (int it = 0; it < p.iterations; it++)
 		{
 			const Eigen::MatrixXd J = jacobian(s, best.residuals, nParams);
 			Eigen::MatrixXd H = J.transpose() * J;
 			const Eigen::VectorXd g = J.transpose() * best.residuals;
 			bool improved = false;
-			for (int tries = 0; tries < 6 && !improved; tries++)
+			for (int tries = 0; tries < kDampedTries && !improved; tries++)
 			{
 				Eigen::MatrixXd Hd = H;
 				Hd.diagonal() *= (1 + lambda);
@@ -185,20 +220,21 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 				cand.dy += delta(2);
 				if (nParams == 4) cand.logScale += delta(3);
 				Evaluation e = evaluate(cand, true);
-				if (e.used >= 20 && e.cost < best.cost)
+				if (e.used >= kMinPoints && e.cost < best.cost)
 				{
 					s = cand;
 					best = e;
-					lambda = std::max(1e-6, lambda / 4);
+					lambda = std::max(kMinDamping, lambda / kDampingDown);
 					improved = true;
 				}
 				else
-					lambda *= 8;
+					lambda *= kDampingUp;
 			}
 			if (!improved) break;
 		}
-		// In-plane covariance from the Gauss-Newton normal equations.
-		if (best.used > 10)
+		// In-plane covariance from the Gauss-Newton normal equations (best
+		// always has kMinPoints here).
+		if (best.used >= kMinPoints)
 		{
 			const double sigma2 = best.cost;
 			const Eigen::MatrixXd J = jacobian(s, best.residuals, 3);

@@ -1,11 +1,15 @@
 #include "tagmap/pipeline.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <mutex>
+#include <optional>
+#include <type_traits>
 
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
+#include "tagmap/derived_lengths.h"
 #include "tagmap/intensity_gradient.h"
 #include "tagmap/image_variants.h"
 #include "tagmap/intermediate_plane.h"
@@ -34,22 +38,64 @@ using Clock = std::chrono::steady_clock;
  *  or half the size is no tag. */
 constexpr double kGivenSizeTolerance = 0.3;
 
-class StageTimer
+/** Fewer points than this: no map to look for tags in. */
+constexpr size_t kMinMapPoints = 16;
+
+// What a stage reports as its items out (Detections::stages), by what it returns.
+size_t itemsOut(double /*spacing*/) { return 1; }
+size_t itemsOut(size_t count) { return count; }
+size_t itemsOut(const VoxelGrid& grid) { return grid.voxelCount(); }
+size_t itemsOut(const IntensityGradientResult& r) { return r.keptPoints.size(); }
+size_t itemsOut(const std::unique_ptr<const OctreeGatherer>& g) { return g->occupiedLeaves(); }
+template <typename T>
+size_t itemsOut(const std::vector<T>& v)
+{
+	return v.size();
+}
+
+// Every stage's bookkeeping, the same for all: its row in Detections::stages
+// (seconds, items in, items out) and its progress. A stage shows (0, 1) when
+// it starts and (1, 1) when it ends; work counted as it goes (points,
+// candidates) shows (0, n), then the counts its worker threads report, in
+// increasing order, and (n, n) at the end.
+class StageRunner
 {
    public:
-	StageTimer(Detections& d, std::string name, size_t in) : d_(d), t0_(Clock::now())
+	StageRunner(std::vector<StageReport>& stages, const ProgressFn& progress) : stages_(stages), progress_(progress) {}
+
+	/** Runs `work()` as stage `name` on `itemsIn` items and returns its
+	 *  result; `work(const CountProgressFn&)` is counted work over itemsIn. */
+	template <typename Work>
+	auto run(const std::string& name, size_t itemsIn, Work&& work)
 	{
-		d_.stages.push_back({std::move(name), 0, in, 0});
-	}
-	void done(size_t out)
-	{
-		d_.stages.back().itemsOut = out;
-		d_.stages.back().seconds = std::chrono::duration<double>(Clock::now() - t0_).count();
+		constexpr bool counted = std::is_invocable_v<Work, const CountProgressFn&>;
+		const size_t total = counted ? itemsIn : 1;
+		size_t shown = 0;
+		std::mutex mutex;  // the workers report; the printer is single-threaded and counts only go up
+		const CountProgressFn count = [&](size_t done, size_t all) {
+			std::lock_guard<std::mutex> lock(mutex);
+			if (done <= shown) return;
+			shown = done;
+			show(name, done, all);
+		};
+		show(name, 0, total);
+		const auto t0 = Clock::now();
+		auto result = [&] {
+			if constexpr (counted) return work(count);
+			else return work();
+		}();
+		stages_.push_back({name, std::chrono::duration<double>(Clock::now() - t0).count(), itemsIn, itemsOut(result)});
+		if (shown < total) show(name, total, total);
+		return result;
 	}
 
    private:
-	Detections& d_;
-	Clock::time_point t0_;
+	void show(const std::string& name, size_t done, size_t total) const
+	{
+		if (progress_) progress_(name, done, total);
+	}
+	std::vector<StageReport>& stages_;
+	const ProgressFn& progress_;
 };
 
 // Everything one candidate needs from the map, in one place.
@@ -57,14 +103,287 @@ struct MapView
 {
 	const float *xs, *ys, *zs, *is;
 	size_t n;
+
+	explicit MapView(const mrpt::maps::CPointsMapXYZI& map)
+		: xs(map.getPointsBufferRef_x().data()),
+		  ys(map.getPointsBufferRef_y().data()),
+		  zs(map.getPointsBufferRef_z().data()),
+		  is(map.getPointsBufferRef_intensity().data()),
+		  n(map.size())
+	{
+	}
+	Eigen::Vector3d point(uint32_t i) const { return {xs[i], ys[i], zs[i]}; }
 };
 
-}  // namespace
-
-Pipeline::Pipeline(PipelineParams params) : params_(std::move(params)) { params_.validate(); }
-
-namespace
+// Clusters at several tolerances: the point spacing varies across a map
+// (near and far views, overlapping passes), and a tag scanned more sparsely
+// than the map's median breaks into fragments at the finest tolerance. A
+// coarser one re-joins it; identical clusters are kept once. `levelScale`:
+// the density level's radius multiple (1, 3, 9 ...). Returns the clusters
+// in all.
+size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double levelScale, double spacing,
+				   const ClusteringParams& p, std::vector<Cluster>& clusters)
 {
+	for (double scale : p.scales)
+		for (Cluster& c :
+			 clusterPoints(m.xs, m.ys, m.zs, kept, levelScale * scale * p.toleranceSpacings * spacing, p.minPoints))
+		{
+			const bool seen = std::any_of(clusters.begin(), clusters.end(), [&](const Cluster& o) {
+				return o.points.size() == c.points.size() && o.points.front() == c.points.front();
+			});
+			if (!seen) clusters.push_back(std::move(c));
+		}
+	return clusters.size();
+}
+
+// Density levels: where the map is sparser than its median (far from the
+// sensor, a fast pass), a point has too few neighbours within r to fit a
+// gradient. Those points alone are run again at 3x the radius and clustered
+// at 3x the tolerance, and so on, so the result follows the local spacing,
+// not the map's densest part. Adds to `clusters`; returns the points kept.
+size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, const DerivedLengths& len,
+						   const PipelineParams& p, unsigned threads, std::vector<Cluster>& clusters)
+{
+	size_t kept = 0;
+	double levelScale = 1;
+	for (int l = 1; l < p.gradient.densityLevels && level.sparsePoints.size() >= p.clustering.minPoints; l++)
+	{
+		levelScale *= 3;
+		const std::vector<uint32_t> subset = std::move(level.sparsePoints);
+		std::vector<float> sx(subset.size()), sy(subset.size()), sz(subset.size()), si(subset.size());
+		for (size_t k = 0; k < subset.size(); k++)
+			sx[k] = m.xs[subset[k]], sy[k] = m.ys[subset[k]], sz[k] = m.zs[subset[k]], si[k] = m.is[subset[k]];
+		const VoxelGrid subGrid(sx.data(), sy.data(), sz.data(), subset.size(), levelScale * len.voxelCell, threads);
+		level = filterByIntensityGradient(sx.data(), sy.data(), sz.data(), si.data(), subGrid,
+										  levelScale * len.gradientRadius, p.gradient, threads, level.intensitySpread);
+		for (auto* v : {&level.keptPoints, &level.sparsePoints})
+			for (auto& k : *v) k = subset[k];  // back to map indices (still ascending)
+		kept += level.keptPoints.size();
+		addClusters(m, level.keptPoints, levelScale, len.spacing, p.clustering, clusters);
+	}
+	return kept;
+}
+
+// The candidate filter as asked: --tag-size, when given, is the only size.
+CandidateFilterParams filterParams(const PipelineParams& p)
+{
+	CandidateFilterParams cf = p.candidates;
+	if (p.tagSize > 0) cf.tagSize = p.tagSize;
+	return cf;
+}
+
+// A candidate: the box to gather around, and the report it fills in.
+struct Candidate
+{
+	size_t report;  // into Detections::candidates
+	OrientedBox box;
+};
+
+// Stage 3 over every cluster: a report each, and the boxes that may hold a
+// tag: the cluster's own, or for a box too long for a tag (maybe a tag
+// clustered together with an edge beside it: a pillar's corner, a shelf)
+// its square windows, candidates of their own.
+std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Cluster>& clusters,
+										 const CandidateFilterParams& cf, const DerivedLengths& len,
+										 std::vector<CandidateReport>& reports)
+{
+	std::vector<Candidate> candidates;
+	for (const Cluster& c : clusters)
+	{
+		const std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
+		CandidateReport rep;
+		rep.center = c.box.center;
+		rep.extent = c.box.extent;
+		rep.clusterPoints = c.points.size();
+		rep.verdict = why.value_or(Verdict::Candidate);
+		reports.push_back(rep);
+		if (!why) candidates.push_back({reports.size() - 1, c.box});
+		if (why != Verdict::Squareness) continue;
+		std::vector<double> along;
+		for (uint32_t i : c.points) along.push_back((m.point(i) - c.box.center).dot(c.box.axes.col(0)));
+		for (const OrientedBox& w : squareWindows(c.box, len.candidateBand, len.planeNoise, cf, along))
+		{
+			rep.center = w.center;
+			rep.extent = w.extent;
+			rep.verdict = Verdict::Candidate;
+			reports.push_back(rep);
+			candidates.push_back({reports.size() - 1, w});
+		}
+	}
+	return candidates;
+}
+
+// A candidate's verdict after a failed check; a tag already decoded on it
+// (another read of the same image) is kept.
+void reject(CandidateReport& rep, Verdict why)
+{
+	if (rep.verdict != Verdict::Decoded) rep.verdict = why;
+}
+
+// What decoding one candidate gives: its tags and its report.
+struct CandidateOutcome
+{
+	std::vector<TagDetection> tags;
+	CandidateReport report;
+};
+
+// Stages 4-6 for one candidate at a time: gather, render, decode, verify,
+// pose. Fixed for the whole map, shared by the worker threads.
+class CandidateDecoder
+{
+   public:
+	CandidateDecoder(const PipelineParams& p, const MapView& m, const OctreeGatherer& gatherer,
+					 const DerivedLengths& len, bool keepImages)
+		: p_(p),
+		  m_(m),
+		  gatherer_(gatherer),
+		  len_(len),
+		  keepImages_(keepImages),
+		  sizes_(filterParams(p)),
+		  // What a read is judged against (read_evidence.h): the families
+		  // searched and the orientations each quad was tried in.
+		  searched_(searchFamilies(p.families.empty() ? parseFamilyList("") : p.families)),
+		  readOrientations_(p.decoder.tryMirrored ? 8 : 4)
+	{
+	}
+
+	/** The candidate's tags and its report (`rep`, with what happened). */
+	CandidateOutcome decodeCandidate(const OrientedBox& box, CandidateReport rep, const TagDecoder& hard,
+									 const SoftTagDecoder& soft) const
+	{
+		CandidateOutcome out{{}, std::move(rep)};
+		const std::vector<uint32_t> pts = gatherer_.gather(box, len_.spacing, m_.xs, m_.ys, m_.zs);
+		out.report.gatheredPoints = pts.size();
+		const PlaneImage plane = renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane);
+		out.report.verdict = Verdict::NoDecode;
+		if (plane.gray.empty())
+		{
+			out.report.verdict = Verdict::NotPlanar;
+			return out;
+		}
+		if (keepImages_) out.report.image = plane.gray;
+		// The raw image's quads serve its ArUco decode and the soft decoder.
+		const std::vector<Quad> quads = findTagQuads(plane.gray, p_.decoder.maxQuads);
+		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
+		{
+			const bool raw = variant.gray.data == plane.gray.data;
+			if (tryReads(hard.decode(variant.gray, raw ? &quads : nullptr), variant.gray, variant.scale, plane, out))
+				return out;
+		}
+		// Last resort for blurred tags: correlate quads with every code.
+		tryReads(soft.decode(plane.gray, quads), plane.gray, 1.0, plane, out);
+		return out;
+	}
+
+   private:
+	// Judges each read on the image it was read from, before anything
+	// costly, then in 3D; true when the candidate has a tag.
+	bool tryReads(std::vector<DecodedTag2D> reads, const cv::Mat& image, double scale, const PlaneImage& plane,
+				  CandidateOutcome& out) const
+	{
+		for (DecodedTag2D& d : reads)
+		{
+			const ReadEvidence ev = assessRead(image, d, readOrientations_, searched_, p_.evidence);
+			for (auto& c : d.corners) c *= scale;
+			if (keepImages_) out.report.decoded.push_back(d);
+			if (ev.rejection)
+			{
+				reject(out.report, *ev.rejection);
+				continue;
+			}
+			TagDetection t;
+			const Verdict v = verifyRead(d, plane, t);
+			if (v != Verdict::Decoded)
+			{
+				reject(out.report, v);
+				continue;
+			}
+			out.report.verdict = Verdict::Decoded;
+			if (keepImages_) out.report.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
+			out.tags.push_back(std::move(t));
+		}
+		return !out.tags.empty();
+	}
+
+	// A read in 3D: pose, plane refit, the tag's own bitmap fitted to its
+	// points, the size asked for, the support plane. Verdict::Decoded and
+	// `t` when it holds.
+	Verdict verifyRead(const DecodedTag2D& d, const PlaneImage& plane, TagDetection& t) const
+	{
+		// A decode the size of a few points (a code read into text or a
+		// corner of a bigger pattern) is no tag of the sizes asked for.
+		if (!sizeAsked(measuredTagSize(d, plane))) return Verdict::SizeMismatch;
+		t = solveTagPose(d, plane, p_.tagSize);
+		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
+		PatternRefinementParams rp = p_.refinement;
+		rp.estimateSize = p_.tagSize <= 0;
+		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return Verdict::PatternMismatch;
+		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
+		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for
+		orientOnSupport(t, plane.planeRms);
+		return Verdict::Decoded;
+	}
+
+	bool sizeAsked(double measured) const
+	{
+		return p_.tagSize > 0 ? std::abs(measured / p_.tagSize - 1) <= kGivenSizeTolerance
+							  : measured >= sizes_.minTagSize && measured <= sizes_.maxTagSize;
+	}
+
+	// The tag's normal from the tag and the flat surface around it
+	// (support_plane.h): the points within reach, gathered afresh.
+	void orientOnSupport(TagDetection& t, double noise) const
+	{
+		if (!p_.supportPlane.enabled) return;
+		OrientedBox around;
+		around.center = t.position();
+		around.axes = t.pose.linear();
+		const double side = 2 * p_.supportPlane.reachSizes * t.size / p_.gather.enlarge;
+		// +-5 sigma of the plane's noise: a slab cut tighter about a plane
+		// still tilted would pull the fit towards that tilt.
+		const double h = 10 * noise;
+		around.extent = Eigen::Vector3d(side, side, h);
+		fitSupportPlane(t, gatherer_.gather(around, len_.spacing, m_.xs, m_.ys, m_.zs), m_.xs, m_.ys, m_.zs,
+						p_.supportPlane);
+	}
+
+	const PipelineParams& p_;
+	const MapView& m_;
+	const OctreeGatherer& gatherer_;
+	const DerivedLengths len_;
+	const bool keepImages_;
+	const CandidateFilterParams sizes_;
+	const std::vector<std::string> searched_;
+	const int readOrientations_;
+};
+
+// Gather, render, decode, solve: independent per candidate, on each
+// worker's own decoders. Results are stored per candidate index, so the
+// output is the same for any thread count. Reports candidates done.
+template <typename DecodersFor>
+std::vector<TagDetection> decodeCandidates(const CandidateDecoder& decoder, const std::vector<Candidate>& candidates,
+										   std::vector<CandidateReport>& reports, unsigned threads,
+										   const CountProgressFn& progress, DecodersFor&& decodersFor)
+{
+	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
+	std::atomic<size_t> finished{0};
+	parallelForWorkers(candidates.size(), threads, [&](unsigned worker, size_t b, size_t e) {
+		const auto decoders = decodersFor(worker);
+		for (size_t k = b; k < e; k++)
+		{
+			CandidateReport& rep = reports[candidates[k].report];
+			CandidateOutcome o = decoder.decodeCandidate(candidates[k].box, std::move(rep), decoders.hard, decoders.soft);
+			rep = std::move(o.report);
+			perCandidate[k] = std::move(o.tags);
+			progress(++finished, candidates.size());
+		}
+	});
+	std::vector<TagDetection> all;
+	for (auto& v : perCandidate)
+		for (auto& t : v) all.push_back(std::move(t));
+	return all;
+}
+
 // The worker's own decoder, built on first use with the families asked for.
 template <typename Decoder, typename Params>
 Decoder& perWorker(std::vector<std::unique_ptr<Decoder>>& pool, std::mutex& mutex, unsigned worker,
@@ -75,273 +394,60 @@ Decoder& perWorker(std::vector<std::unique_ptr<Decoder>>& pool, std::mutex& mute
 	if (!pool[worker]) pool[worker] = std::make_unique<Decoder>(families.empty() ? parseFamilyList("") : families, params);
 	return *pool[worker];
 }
+
 }  // namespace
 
-SoftTagDecoder& Pipeline::softDecoderFor(unsigned worker) const
-{
-	return perWorker(softDecoders_, decodersMutex_, worker, params_.families, params_.softDecoder);
-}
+Pipeline::Pipeline(PipelineParams params) : params_(std::move(params)) { params_.validate(); }
 
-TagDecoder& Pipeline::decoderFor(unsigned worker) const
+Pipeline::WorkerDecoders Pipeline::decodersFor(unsigned worker) const
 {
-	return perWorker(decoders_, decodersMutex_, worker, params_.families, params_.decoder);
+	return {perWorker(decoders_, decodersMutex_, worker, params_.families, params_.decoder),
+			perWorker(softDecoders_, decodersMutex_, worker, params_.families, params_.softDecoder)};
 }
 
 Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress, bool keepImages) const
 {
 	const auto tStart = Clock::now();
 	Detections out;
-	const MapView m{map.getPointsBufferRef_x().data(), map.getPointsBufferRef_y().data(),
-					map.getPointsBufferRef_z().data(), map.getPointsBufferRef_intensity().data(), map.size()};
+	const MapView m(map);
+	if (m.n < kMinMapPoints) return out;
 	const unsigned threads = resolveThreads(params_.threads);
-	auto report = [&](const std::string& stage, size_t done, size_t total) {
-		if (progress) progress(stage, done, total);
-	};
-	if (m.n < 16) return out;
+	StageRunner stage(out.stages, progress);
 
-	StageTimer tSpacing(out, "point_spacing", m.n);
-	const double spacing = estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing, threads);
-	tSpacing.done(1);
+	const double spacing = stage.run("point_spacing", m.n, [&] {
+		return estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing, threads);
+	});
 	out.pointSpacing = spacing;
 	if (!(spacing > 0)) return out;
-	const double radius = params_.gradientRadiusSpacings * spacing;
-
-	report("neighbour_index", 0, 1);
-	StageTimer tGrid(out, "neighbour_index", m.n);
-	const VoxelGrid grid(m.xs, m.ys, m.zs, m.n, radius, threads);
-	tGrid.done(grid.voxelCount());
-	report("neighbour_index", 1, 1);
-
-	StageTimer tNoise(out, "surface_noise", m.n);
-	const double surfaceNoise = estimateSurfaceNoise(m.xs, m.ys, m.zs, m.n, grid);
-	tNoise.done(1);
-	out.surfaceNoise = surfaceNoise;
-	// How far a flat surface's points may stray from its plane: the measured
-	// noise (3 sigma), at least two spacings (a noiseless map's own sampling).
-	const double planeNoise = std::max(2 * spacing, 3 * surfaceNoise);
-
-	// Clusters at several tolerances: the point spacing varies across a map
-	// (near and far views, overlapping passes), and a tag scanned more
-	// sparsely than the map's median breaks into fragments at the finest
-	// tolerance. A coarser one re-joins it; identical clusters are kept once.
-	std::vector<Cluster> clusters;
-	auto addClusters = [&](const std::vector<uint32_t>& kept, double levelScale) {
-		for (double scale : params_.clustering.scales)
-			for (Cluster& c : clusterPoints(m.xs, m.ys, m.zs, kept,
-											levelScale * scale * params_.clustering.toleranceSpacings * spacing,
-											params_.clustering.minPoints))
-			{
-				const bool seen = std::any_of(clusters.begin(), clusters.end(), [&](const Cluster& o) {
-					return o.points.size() == c.points.size() && o.points.front() == c.points.front();
-				});
-				if (!seen) clusters.push_back(std::move(c));
-			}
-	};
-
-	report("intensity_gradient", 0, m.n);
-	StageTimer tGradient(out, "intensity_gradient", m.n);
-	// The workers report; the printer is single-threaded and counts only go up.
-	std::mutex gradientProgressMutex;
-	size_t gradientShown = 0;
-	IntensityGradientResult level =
-		filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, params_.gradient, threads, 0, [&](size_t done, size_t total) {
-			std::lock_guard<std::mutex> lock(gradientProgressMutex);
-			if (done <= gradientShown) return;
-			gradientShown = done;
-			report("intensity_gradient", done, total);
-		});
-	tGradient.done(level.keptPoints.size());
-	if (gradientShown < m.n) report("intensity_gradient", m.n, m.n);
-
-	report("clustering", 0, 1);
-	StageTimer tCluster(out, "clustering", level.keptPoints.size());
-	addClusters(level.keptPoints, 1.0);
-	tCluster.done(clusters.size());
-	report("clustering", 1, 1);
-
-	// Density levels: where the map is sparser than its median (far from the
-	// sensor, a fast pass), a point has too few neighbours within r to fit a
-	// gradient. Those points alone are run again at 3x the radius and
-	// clustered at 3x the tolerance, and so on, so the result follows the
-	// local spacing, not the map's densest part.
-	StageTimer tSparse(out, "sparse_levels", level.sparsePoints.size());
-	size_t sparseKept = 0;
-	double levelScale = 1;
-	for (int l = 1; l < params_.gradient.densityLevels && level.sparsePoints.size() >= params_.clustering.minPoints; l++)
-	{
-		levelScale *= 3;
-		const std::vector<uint32_t> subset = std::move(level.sparsePoints);
-		std::vector<float> sx(subset.size()), sy(subset.size()), sz(subset.size()), si(subset.size());
-		for (size_t k = 0; k < subset.size(); k++)
-			sx[k] = m.xs[subset[k]], sy[k] = m.ys[subset[k]], sz[k] = m.zs[subset[k]], si[k] = m.is[subset[k]];
-		const VoxelGrid subGrid(sx.data(), sy.data(), sz.data(), subset.size(), levelScale * radius, threads);
-		level = filterByIntensityGradient(sx.data(), sy.data(), sz.data(), si.data(), subGrid, params_.gradient, threads,
-										  level.intensitySpread);
-		for (auto* v : {&level.keptPoints, &level.sparsePoints})
-			for (auto& k : *v) k = subset[k];  // back to map indices (still ascending)
-		sparseKept += level.keptPoints.size();
-		addClusters(level.keptPoints, levelScale);
-	}
-	tSparse.done(sparseKept);
-
-	StageTimer tFilter(out, "candidate_filter", clusters.size());
-	CandidateFilterParams cf = params_.candidates;
-	if (params_.tagSize > 0) cf.tagSize = params_.tagSize;
-	// A candidate: the box to gather around, and the report it fills in.
-	struct Candidate
-	{
-		size_t report;
-		OrientedBox box;
-	};
-	std::vector<Candidate> candidates;
-	for (size_t c = 0; c < clusters.size(); c++)
-	{
-		const std::string why = rejectCandidate(clusters[c].box, radius, planeNoise, cf);
-		CandidateReport rep;
-		rep.center = clusters[c].box.center;
-		rep.extent = clusters[c].box.extent;
-		rep.clusterPoints = clusters[c].points.size();
-		rep.verdict = why.empty() ? "candidate" : why;
-		out.candidates.push_back(rep);
-		if (why.empty()) candidates.push_back({out.candidates.size() - 1, clusters[c].box});
-		if (why != "squareness") continue;
-		// Too long for a tag: maybe a tag clustered together with an edge
-		// beside it (a pillar's corner, a shelf); its square windows are
-		// candidates of their own.
-		std::vector<double> along;
-		const OrientedBox& b = clusters[c].box;
-		for (uint32_t i : clusters[c].points)
-			along.push_back((Eigen::Vector3d(m.xs[i], m.ys[i], m.zs[i]) - b.center).dot(b.axes.col(0)));
-		for (const OrientedBox& w : squareWindows(b, radius, planeNoise, cf, along))
-		{
-			rep.center = w.center;
-			rep.extent = w.extent;
-			rep.verdict = "candidate";
-			out.candidates.push_back(rep);
-			candidates.push_back({out.candidates.size() - 1, w});
-		}
-	}
-	tFilter.done(candidates.size());
-
-	report("octree", 0, 1);
-	StageTimer tOctree(out, "octree", grid.voxelCount());
-	const OctreeGatherer gatherer(grid, params_.gather, threads);
-	tOctree.done(gatherer.occupiedLeaves());
-	report("octree", 1, 1);
-
-	// Gather, render, decode, solve: independent per candidate. Results are
-	// stored per candidate index, so the output is the same for any thread count.
-	report("decode", 0, candidates.size());
-	StageTimer tDecode(out, "decode", candidates.size());
-	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
-	// What a read is judged against (read_evidence.h): the families
-	// searched and the orientations each quad was tried in.
-	const std::vector<std::string> searched =
-		searchFamilies(params_.families.empty() ? parseFamilyList("") : params_.families);
-	const int readOrientations = params_.decoder.tryMirrored ? 8 : 4;
-	std::mutex progressMutex;
-	size_t finished = 0;
-	// The tag's normal from the tag and the flat surface around it
-	// (support_plane.h): the points within reach, gathered afresh.
-	auto orientOnSupport = [&](TagDetection& t, double noise) {
-		if (!params_.supportPlane.enabled) return;
-		OrientedBox around;
-		around.center = t.position();
-		around.axes = t.pose.linear();
-		const double side = 2 * params_.supportPlane.reachSizes * t.size / params_.gather.enlarge;
-		// +-5 sigma of the plane's noise: a slab cut tighter about a plane
-		// still tilted would pull the fit towards that tilt.
-		const double h = 10 * noise;
-		around.extent = Eigen::Vector3d(side, side, h);
-		fitSupportPlane(t, gatherer.gather(around, spacing, m.xs, m.ys, m.zs), m.xs, m.ys, m.zs, params_.supportPlane);
-	};
-	auto sizeAsked = [&](double measured) {
-		return params_.tagSize > 0 ? std::abs(measured / params_.tagSize - 1) <= kGivenSizeTolerance
-								   : measured >= cf.minTagSize && measured <= cf.maxTagSize;
-	};
-	parallelForWorkers(candidates.size(), threads, [&](unsigned worker, size_t b, size_t e) {
-		const TagDecoder& decoder = decoderFor(worker);
-		for (size_t k = b; k < e; k++)
-		{
-			const OrientedBox& box = candidates[k].box;
-			CandidateReport& rep = out.candidates[candidates[k].report];
-			const std::vector<uint32_t> pts = gatherer.gather(box, spacing, m.xs, m.ys, m.zs);
-			rep.gatheredPoints = pts.size();
-			const PlaneImage plane =
-				renderIntermediatePlane(m.xs, m.ys, m.zs, m.is, pts, box, spacing, params_.plane);
-			rep.verdict = "no_decode";
-			if (plane.gray.empty())
-			{
-				rep.verdict = "not_planar";
-				continue;
-			}
-			if (keepImages) rep.image = plane.gray;
-			// Verifies a decode against its own bitmap in 3D; keeps it if it fits.
-			auto tryDecoded = [&](const DecodedTag2D& d) {
-				// A decode the size of a few points (a code read into text or
-				// a corner of a bigger pattern) is no tag of the sizes asked for.
-				if (!sizeAsked(measuredTagSize(d, plane)))
-				{
-					if (rep.verdict != "decoded") rep.verdict = "size_mismatch";
-					return;
-				}
-				TagDetection t = solveTagPose(d, plane, params_.tagSize);
-				refitTagPlane(t, plane, m.xs, m.ys, m.zs);
-				PatternRefinementParams rp = params_.refinement;
-				rp.estimateSize = params_.tagSize <= 0;
-				if (!refineWithPattern(t, plane, m.xs, m.ys, m.zs, m.is, rp))
-				{
-					if (rep.verdict != "decoded") rep.verdict = "pattern_mismatch";
-					return;
-				}
-				refitTagPlane(t, plane, m.xs, m.ys, m.zs);
-				if (!sizeAsked(t.size))  // the refined size, too, must be one asked for
-				{
-					if (rep.verdict != "decoded") rep.verdict = "size_mismatch";
-					return;
-				}
-				orientOnSupport(t, plane.planeRms);
-				rep.verdict = "decoded";
-				if (keepImages) rep.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
-				perCandidate[k].push_back(std::move(t));
-			};
-			auto tryAll = [&](std::vector<DecodedTag2D> decoded, const cv::Mat& image, double scale) {
-				for (DecodedTag2D& d : decoded)
-				{
-					// Judged on the image it was read from, before anything costly.
-					const ReadEvidence ev = assessRead(image, d, readOrientations, searched, params_.evidence);
-					for (auto& c : d.corners) c *= scale;
-					if (keepImages) rep.decoded.push_back(d);
-					if (!ev.rejection.empty())
-					{
-						if (rep.verdict != "decoded") rep.verdict = ev.rejection;
-						continue;
-					}
-					tryDecoded(d);
-				}
-				return !perCandidate[k].empty();
-			};
-			// The raw image's quads serve its ArUco decode and the soft decoder.
-			const std::vector<Quad> quads = findTagQuads(plane.gray, params_.decoder.maxQuads);
-			bool found = false;
-			for (const ImageVariant& variant : makeImageVariants(plane.gray, params_.imageVariants))
-				if ((found = tryAll(decoder.decode(variant.gray, variant.gray.data == plane.gray.data ? &quads : nullptr),
-									variant.gray, variant.scale)))
-					break;
-			// Last resort for blurred tags: correlate quads with every code.
-			if (!found) tryAll(softDecoderFor(worker).decode(plane.gray, quads), plane.gray, 1.0);
-			std::lock_guard<std::mutex> lock(progressMutex);
-			report("decode", ++finished, candidates.size());
-		}
+	DerivedLengths len = DerivedLengths::of(spacing, params_);
+	const VoxelGrid grid = stage.run("neighbour_index", m.n, [&] {
+		return VoxelGrid(m.xs, m.ys, m.zs, m.n, len.voxelCell, threads);
 	});
-	std::vector<TagDetection> all;
-	for (auto& v : perCandidate)
-		for (auto& t : v) all.push_back(std::move(t));
-	tDecode.done(all.size());
-
-	StageTimer tMerge(out, "merge", all.size());
-	out.tags = mergeDetections(std::move(all));
-	tMerge.done(out.tags.size());
+	out.surfaceNoise = stage.run("surface_noise", m.n, [&] { return estimateSurfaceNoise(m.xs, m.ys, m.zs, m.n, grid); });
+	len.setSurfaceNoise(out.surfaceNoise);
+	IntensityGradientResult edges = stage.run("intensity_gradient", m.n, [&](const CountProgressFn& count) {
+		return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, len.gradientRadius, params_.gradient, threads, 0,
+										 count);
+	});
+	std::vector<Cluster> clusters;
+	stage.run("clustering", edges.keptPoints.size(), [&] {
+		return addClusters(m, edges.keptPoints, 1.0, spacing, params_.clustering, clusters);
+	});
+	stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
+		return clusterSparseLevels(m, std::move(edges), len, params_, threads, clusters);
+	});
+	const std::vector<Candidate> candidates = stage.run("candidate_filter", clusters.size(), [&] {
+		return proposeCandidates(m, clusters, filterParams(params_), len, out.candidates);
+	});
+	const auto gatherer = stage.run("octree", grid.voxelCount(), [&] {
+		return std::make_unique<const OctreeGatherer>(grid, params_.gather, threads);
+	});
+	const CandidateDecoder decoder(params_, m, *gatherer, len, keepImages);
+	std::vector<TagDetection> found = stage.run("decode", candidates.size(), [&](const CountProgressFn& count) {
+		return decodeCandidates(decoder, candidates, out.candidates, threads, count,
+								[this](unsigned worker) { return decodersFor(worker); });
+	});
+	out.tags = stage.run("merge", found.size(), [&] { return mergeDetections(std::move(found)); });
 	out.totalSeconds = std::chrono::duration<double>(Clock::now() - tStart).count();
 	return out;
 }

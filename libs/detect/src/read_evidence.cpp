@@ -67,7 +67,7 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 	const TagBitmap bm = renderTagBitmap(read.family, read.id);
 	const CellRoles& roles = rolesOf(read.family);
 	e.codeBits = roles.codeBits;
-	e.rejection = "by_chance";
+	e.rejection = Verdict::ByChance;
 	// Corners are in vertex order, so the samples come out upright.
 	const std::vector<float> sample = sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
 	if (sample.empty() || !info) return e;
@@ -107,11 +107,11 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 		e.chance = chanceMatchProbability(codes, e.codeBits, read.hamming, orientations);
 	}
 	if (e.chance > p.chanceBudget / static_cast<double>(std::max<size_t>(searched.size(), 1))) return e;
-	e.rejection = "no_border";
+	e.rejection = Verdict::NoBorder;
 	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells) return e;
-	e.rejection = "no_quiet_zone";
+	e.rejection = Verdict::NoQuietZone;
 	if (e.quietErrors > p.maxQuietErrorRate * e.quietCells) return e;
-	e.rejection.clear();
+	e.rejection.reset();
 	return e;
 }
 

@@ -52,7 +52,7 @@ cv::Mat renderCandidateView(const CandidateReport& c, const CandidateViewParams&
 		outlinedText(img, label + (d.mirrored ? " (mirrored)" : ""), cv::Point(centre) + cv::Point(-40, 5), 0.5,
 					 cv::Scalar(255, 255, 255));
 	}
-	outlinedText(img, c.verdict, cv::Point(6, 18), 0.55, c.verdict == "decoded" ? accepted : rejected);
+	outlinedText(img, verdictName(c.verdict), cv::Point(6, 18), 0.55, c.verdict == Verdict::Decoded ? accepted : rejected);
 	return img;
 }
 

@@ -81,18 +81,23 @@ std::string stagesSection(const Detections& found)
 
 std::string verdictsTable(const Detections& found)
 {
-	std::map<std::string, size_t> counts;
-	for (const auto& c : found.candidates) counts[c.verdict]++;
+	std::map<std::string, std::pair<size_t, const char*>> rows;  // by name: count, meaning
+	for (const auto& c : found.candidates)
+	{
+		auto& row = rows[verdictName(c.verdict)];
+		row.first++;
+		row.second = verdictMeaning(c.verdict);
+	}
 	HtmlTable t({"verdict", "clusters", "meaning"});
-	for (const auto& [v, n] : counts) t.addRow({v, std::to_string(n), verdictMeaning(v)});
+	for (const auto& [name, row] : rows) t.addRow({name, std::to_string(row.first), row.second});
 	return t.html();
 }
 
 std::string candidateCaption(size_t index, const CandidateReport& c)
 {
-	std::string what = c.verdict;
+	std::string what = verdictName(c.verdict);
 	for (const auto& l : c.decodedLabels) what += " " + l;
-	const char* cls = c.verdict == "decoded" ? "decoded" : "rejected";
+	const char* cls = c.verdict == Verdict::Decoded ? "decoded" : "rejected";
 	return "<b class=\"" + std::string(cls) + "\">" + htmlEscape(format("#%zu ", index) + what) + "</b><br>" +
 		   htmlEscape(format("%zu cluster / %zu gathered points; box %.2f x %.2f x %.2f m at (%.2f, %.2f, %.2f)",
 							 c.clusterPoints, c.gatheredPoints, c.extent.x(), c.extent.y(), c.extent.z(), c.center.x(),
@@ -119,7 +124,7 @@ std::string rejectedSection(const Detections& found, size_t maxListed)
 {
 	std::vector<size_t> idx;
 	for (size_t i = 0; i < found.candidates.size(); i++)
-		if (found.candidates[i].image.empty() && found.candidates[i].verdict != "decoded") idx.push_back(i);
+		if (found.candidates[i].image.empty() && found.candidates[i].verdict != Verdict::Decoded) idx.push_back(i);
 	std::stable_sort(idx.begin(), idx.end(), [&](size_t a, size_t b) {
 		return found.candidates[a].clusterPoints > found.candidates[b].clusterPoints;
 	});
@@ -128,7 +133,7 @@ std::string rejectedSection(const Detections& found, size_t maxListed)
 	for (size_t k = 0; k < shown; k++)
 	{
 		const CandidateReport& c = found.candidates[idx[k]];
-		t.addRow({std::to_string(idx[k]), c.verdict, std::to_string(c.clusterPoints),
+		t.addRow({std::to_string(idx[k]), verdictName(c.verdict), std::to_string(c.clusterPoints),
 				  format("%.3f x %.3f x %.3f", c.extent.x(), c.extent.y(), c.extent.z()), vec3(c.center, "%.2f")});
 	}
 	std::string h = "<h2>Clusters without an image</h2>\n<p>Rejected by the candidate filter before any image was "
@@ -148,26 +153,6 @@ std::string configSection(const PipelineParams& params)
 		   htmlEscape(yaml.str()) + "</pre></details>\n";
 }
 }  // namespace
-
-std::string verdictMeaning(const std::string& verdict)
-{
-	static const std::map<std::string, std::string> m = {
-		{"decoded", "a tag was read and its points match the tag's bitmap"},
-		{"size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
-		{"squareness", "box too elongated for a square tag (candidates.max_aspect)"},
-		{"not_flat", "box too thick for a printed tag (candidates.max_flatness)"},
-		{"not_planar", "the gathered points do not fit one plane"},
-		{"no_decode", "no decoder read a tag of the requested families on the image"},
-		{"by_chance", "a code was read, but a random pattern would match some code that well too often (evidence.chance_budget)"},
-		{"no_border", "a code was read, but the black border ring is not black (evidence.max_border_error_rate)"},
-		{"no_quiet_zone", "a code was read, but the white margin around it is not white: a grid or a larger pattern (evidence.max_quiet_error_rate)"},
-		{"size_mismatch", "decoded, but the decoded square is not a tag size asked for (--tag-size, candidates.min/max_tag_size)"},
-		{"pattern_mismatch", "decoded, but the points disagree with the bitmap (refinement.min_pattern_fit)"},
-		{"candidate", "passed the filter, not processed"},
-	};
-	auto it = m.find(verdict);
-	return it == m.end() ? "" : it->second;
-}
 
 std::string reportPage(const ReportInput& in, const PageImages& images, const ReportParams& p)
 {

@@ -29,7 +29,7 @@ std::vector<size_t> galleryOrder(const Detections& found)
 	std::vector<size_t> idx;
 	for (size_t i = 0; i < found.candidates.size(); i++)
 		if (!found.candidates[i].image.empty()) idx.push_back(i);
-	auto rank = [&](size_t i) { return found.candidates[i].verdict == "decoded" ? 0 : 1; };
+	auto rank = [&](size_t i) { return found.candidates[i].verdict == Verdict::Decoded ? 0 : 1; };
 	std::stable_sort(idx.begin(), idx.end(), [&](size_t a, size_t b) {
 		if (rank(a) != rank(b)) return rank(a) < rank(b);
 		return found.candidates[a].clusterPoints > found.candidates[b].clusterPoints;

@@ -5,10 +5,11 @@
 // cluster to be flat, since a tag is paper on a surface.
 #pragma once
 
-#include <string>
+#include <optional>
 #include <vector>
 
 #include "tagmap/clustering.h"
+#include "tagmap/verdict.h"
 
 namespace tagmap
 {
@@ -34,11 +35,12 @@ struct CandidateFilterParams
 	double splitAspect = 4.0;
 };
 
-/** "" when the box may hold a tag, else the reason: "size", "squareness" or
- *  "not_flat". `band` is how far the kept edge points reach beyond the tag
- *  border (the gradient radius), `noise` how far a flat surface's points
- *  stray from its plane (from the map's measured surface noise). */
-std::string rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
+/** Nothing when the box may hold a tag, else the reason: Verdict::Size,
+ *  Squareness or NotFlat. `band` is how far the kept edge points reach
+ *  beyond the tag border (the gradient radius), `noise` how far a flat
+ *  surface's points stray from its plane (from the map's measured surface
+ *  noise, DerivedLengths::planeNoise). */
+std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
 
 /** Square boxes of `box`'s width, half-overlapping along its length, for a
  *  box too elongated for a tag: a tag clustered together with an edge

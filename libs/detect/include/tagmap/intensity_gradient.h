@@ -41,11 +41,13 @@ struct IntensityGradientResult
 	std::vector<uint32_t> sparsePoints;
 };
 
-/** `grid` must have been built over the same points with cell = radius r.
- *  `spread`: the intensity spread to normalise by (0: measure it on these points).
+/** `radius`: the neighbourhood r (DerivedLengths::gradientRadius); `grid`
+ *  must have been built over the same points with cells of at least r, so
+ *  that a point's neighbours lie in its voxel's 3x3x3 block (throws
+ *  std::invalid_argument otherwise). `spread`: the intensity spread to normalise by (0: measure it on these points).
  *  `progress`: points examined so far and in all, from the worker threads. */
 IntensityGradientResult filterByIntensityGradient(const float* xs, const float* ys, const float* zs, const float* is,
-												  const VoxelGrid& grid, const IntensityGradientParams& p,
+												  const VoxelGrid& grid, double radius, const IntensityGradientParams& p,
 												  unsigned threads, double spread = 0,
 												  const CountProgressFn& progress = {});
 

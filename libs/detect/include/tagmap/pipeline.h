@@ -20,6 +20,7 @@
 #include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_detection.h"
+#include "tagmap/verdict.h"
 
 namespace tagmap
 {
@@ -38,11 +39,7 @@ struct CandidateReport
 	Eigen::Vector3d extent = Eigen::Vector3d::Zero();  // OBB l, w, h
 	size_t clusterPoints = 0;
 	size_t gatheredPoints = 0;
-	/** "candidate" (passed the filter), "size", "squareness", "not_flat"
-	 *  (rejected by the filter), "not_planar", "no_decode", "size_mismatch"
-	 *  (the decoded square is not a tag size asked for), "pattern_mismatch"
-	 *  or "decoded". */
-	std::string verdict;
+	Verdict verdict = Verdict::Candidate;  // verdict.h: names and meanings
 	// Filled only with Pipeline::detect(..., keepImages = true), for reports:
 	cv::Mat image;  // the intermediate-plane intensity image
 	std::vector<DecodedTag2D> decoded;  // what the decoders read on it
@@ -82,8 +79,12 @@ class Pipeline
 	mutable std::vector<std::unique_ptr<TagDecoder>> decoders_;
 	mutable std::mutex decodersMutex_;
 	mutable std::vector<std::unique_ptr<SoftTagDecoder>> softDecoders_;
-	TagDecoder& decoderFor(unsigned worker) const;
-	SoftTagDecoder& softDecoderFor(unsigned worker) const;
+	struct WorkerDecoders
+	{
+		const TagDecoder& hard;
+		const SoftTagDecoder& soft;
+	};
+	WorkerDecoders decodersFor(unsigned worker) const;
 };
 
 }  // namespace tagmap

@@ -18,10 +18,12 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "tagmap/tag_decoder.h"
+#include "tagmap/verdict.h"
 
 namespace tagmap
 {
@@ -50,8 +52,8 @@ struct ReadEvidence
 	int borderErrors = 0, borderCells = 0;  // black ring cells read white
 	int quietErrors = 0, quietCells = 0;  // white margin cells read dark
 	double chance = 1;  // probability of a match this good by chance
-	/** "" when accepted, else "by_chance", "no_border" or "no_quiet_zone". */
-	std::string rejection;
+	/** Nothing when accepted, else Verdict::ByChance, NoBorder or NoQuietZone. */
+	std::optional<Verdict> rejection;
 };
 
 /** The evidence of `read` on the image it was read from. `orientations`:

@@ -1,6 +1,6 @@
 // One candidate cluster's intermediate-plane image as the decoders saw it,
 // enlarged for people, with every decode drawn: the quad, its vertex indices
-// 0..3 (CONVENTIONS.md order) and "family:id", green when the decode became a
+// 0..3 (the vertex order of docs/RESULT_FORMAT.md) and "family:id", green when the decode became a
 // tag, orange when the pattern check rejected it.
 #pragma once
 

@@ -24,9 +24,6 @@ struct PageImages
 	size_t candidatesOmitted = 0;  // had an image, not shown (ReportParams::maxCandidateImages)
 };
 
-/** A short explanation of a CandidateReport::verdict, for people. */
-std::string verdictMeaning(const std::string& verdict);
-
 std::string reportPage(const ReportInput& in, const PageImages& images, const ReportParams& p);
 
 }  // namespace tagmap::report

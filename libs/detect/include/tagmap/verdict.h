@@ -1,0 +1,70 @@
+// What happened to a candidate cluster, one value per outcome: the filter's
+// rejections, the read checks', the 3D checks' and "decoded". Each has the
+// name written in reports (HTML, candidate images, bench tables) and its
+// meaning for people, in one table, so a misspelt verdict does not compile.
+#pragma once
+
+#include <array>
+#include <ostream>
+#include <string>
+
+namespace tagmap
+{
+enum class Verdict
+{
+	Candidate,  // passed the filter (so far)
+	Size,
+	Squareness,
+	NotFlat,
+	NotPlanar,
+	NoDecode,
+	ByChance,
+	NoBorder,
+	NoQuietZone,
+	SizeMismatch,
+	PatternMismatch,
+	Decoded,
+};
+
+struct VerdictInfo
+{
+	Verdict verdict;
+	const char* name;  // as written in reports: never rename
+	const char* meaning;
+};
+
+inline constexpr std::array<VerdictInfo, 12> kVerdicts = {{
+	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
+	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
+	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
+	{Verdict::NotFlat, "not_flat", "box too thick for a printed tag (candidates.max_flatness)"},
+	{Verdict::NotPlanar, "not_planar", "the gathered points do not fit one plane"},
+	{Verdict::NoDecode, "no_decode", "no decoder read a tag of the requested families on the image"},
+	{Verdict::ByChance, "by_chance",
+	 "a code was read, but a random pattern would match some code that well too often (evidence.chance_budget)"},
+	{Verdict::NoBorder, "no_border",
+	 "a code was read, but the black border ring is not black (evidence.max_border_error_rate)"},
+	{Verdict::NoQuietZone, "no_quiet_zone",
+	 "a code was read, but the white margin around it is not white: a grid or a larger pattern "
+	 "(evidence.max_quiet_error_rate)"},
+	{Verdict::SizeMismatch, "size_mismatch",
+	 "decoded, but the decoded square is not a tag size asked for (--tag-size, candidates.min/max_tag_size)"},
+	{Verdict::PatternMismatch, "pattern_mismatch",
+	 "decoded, but the points disagree with the bitmap (refinement.min_pattern_fit)"},
+	{Verdict::Decoded, "decoded", "a tag was read and its points match the tag's bitmap"},
+}};
+
+constexpr bool verdictTableInEnumOrder()
+{
+	for (size_t k = 0; k < kVerdicts.size(); k++)
+		if (static_cast<size_t>(kVerdicts[k].verdict) != k) return false;
+	return static_cast<size_t>(Verdict::Decoded) + 1 == kVerdicts.size();
+}
+static_assert(verdictTableInEnumOrder(), "kVerdicts: one row per Verdict, in enum order");
+
+inline const VerdictInfo& verdictInfo(Verdict v) { return kVerdicts[static_cast<size_t>(v)]; }
+inline const char* verdictName(Verdict v) { return verdictInfo(v).name; }
+inline const char* verdictMeaning(Verdict v) { return verdictInfo(v).meaning; }
+inline std::ostream& operator<<(std::ostream& os, Verdict v) { return os << verdictName(v); }
+
+}  // namespace tagmap
