@@ -5,7 +5,8 @@
 # the MRPT GUI/app tests and the Chromium report test (external programs, not
 # our code, and far too slow under ASan), and the long whole-pipeline runs
 # (benchmarks, end-to-end localization, determinism, kill mid-run: minutes
-# each under ASan), which the regular build covers.
+# each under ASan), which the regular build covers; and the install test,
+# which installs the whole tree while only the targets above are built here.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build-asan
@@ -14,7 +15,7 @@ TARGETS=(
 	test_tag_decoder test_stages test_pipeline test_localize tagmap
 	fuzz_pcd_replay fuzz_ply_replay fuzz_las_replay fuzz_lzf_replay fuzz_scene_replay fuzz_config_replay
 )
-EXCLUDE='_NOT_BUILT|^mrpt_|report_chromium|^bench_|^localize_|reliability_(determinism|kill_midrun)'
+EXCLUDE='_NOT_BUILT|^mrpt_|report_chromium|^bench_|^localize_|reliability_(determinism|kill_midrun)|^install_'
 
 cmake -S . -B "$B" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTAGMAP_SANITIZE=ON >/dev/null
 cmake --build "$B" -j"$(nproc)" --target "${TARGETS[@]}"
