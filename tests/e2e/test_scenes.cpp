@@ -1,6 +1,7 @@
 // End-to-end: simulate the project's scenes (share/scenes/) and detect their
 // tags with default parameters, scored against the simulator's ground truth
 // as the drifted map shows it (truthInMap).
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <set>
@@ -96,6 +97,27 @@ TEST(Scenes, NegativesNoFalseDetection)
 	const SceneRun r = run("negatives.yaml");
 	EXPECT_TRUE(r.eval.perTruth.empty());
 	EXPECT_EQ(r.found.tags.size(), 0u);
+}
+
+// A mirror-printed tag36h11 on a pillar scanned from all sides: its mirror
+// image is a valid code whose printed face would look into the pillar.
+// front_side.h rejects it; without that check it is a false tag (so the
+// scene does exercise the rule).
+TEST(Scenes, MirrorPrintedTagOnAPillarIsNoTag)
+{
+	const SceneRun r = run("mirrored.yaml");
+	EXPECT_EQ(r.eval.perTruth.size(), 1u);
+	expectAllFound(r);
+	const auto wrongSide = std::count_if(r.found.candidates.begin(), r.found.candidates.end(),
+										 [](const CandidateReport& c) { return c.verdict == Verdict::WrongSide; });
+	EXPECT_GE(wrongSide, 1);
+
+	PipelineParams unchecked;
+	unchecked.frontSide.enabled = false;
+	const Detections without = Pipeline(unchecked).detect(r.sim.map);
+	const auto mirrored = std::count_if(without.tags.begin(), without.tags.end(),
+										[](const TagDetection& t) { return t.family == "tag36h11" && t.id == 200; });
+	EXPECT_EQ(mirrored, 1) << "the scene no longer shows the mirror read the check is for";
 }
 
 TEST(Scenes, ParkingAllThreeTagsIncludingTheBlurredOne)

@@ -152,6 +152,20 @@ std::string yamlScalarText(const mrpt::containers::yaml& node)
 	return out.str();
 }
 
+void requireKnownKeys(const mrpt::containers::yaml& node, const std::set<std::string>& allowed,
+					  const std::string& prefix)
+{
+	if (!node.isMap()) throw std::invalid_argument("expected a map of keys, not a single value or list");
+	for (const auto& kv : node.asMap())
+	{
+		const std::string key = kv.first.isScalar() ? yamlScalarText(kv.first) : "(a map or list)";
+		if (allowed.count(key)) continue;
+		std::string list;
+		for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+		throw std::invalid_argument("unknown key '" + prefix + key + "' (allowed: " + list + ")");
+	}
+}
+
 namespace
 {
 [[noreturn]] void notA(const std::string& what, const std::string& text)

@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/candidate_filter.h"
 
 #include <algorithm>
@@ -45,8 +46,7 @@ std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, doub
 		for (double a : along)
 			for (size_t k = 0; k < offsets.size(); k++) count[k] += std::abs(a - offsets[k]) <= 0.5 * w;
 		std::vector<size_t> sorted = count;
-		std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
-		const size_t median = sorted[sorted.size() / 2];
+		const size_t median = medianInPlace(sorted);
 		std::vector<double> dense;
 		for (size_t k = 0; k < offsets.size(); k++)
 		{

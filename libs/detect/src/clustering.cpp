@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/clustering.h"
 
 #include <Eigen/Eigenvalues>
@@ -54,14 +55,9 @@ OrientedBox fitOrientedBox(const float* xs, const float* ys, const float* zs, co
 	}
 	box.axes = axes;
 	box.extent = hi - lo;
-	auto at = [&](double fraction) {
-		auto it = heights.begin() + static_cast<long>(fraction * static_cast<double>(heights.size() - 1));
-		std::nth_element(heights.begin(), it, heights.end());
-		return *it;
-	};
-	const double median = at(0.5);
+	const double median = quantileInPlace(heights, 0.5);
 	for (double& z : heights) z = std::abs(z - median);
-	box.thickness = std::min(box.extent.z(), 2 * at(0.95));
+	box.thickness = std::min(box.extent.z(), 2 * quantileInPlace(heights, 0.95));
 	box.center = mean + axes * (0.5 * (lo + hi));
 	return box;
 }

@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/intensity_gradient.h"
 
 #include <Eigen/Dense>
@@ -17,12 +18,7 @@ double robustIntensitySpread(const float* is, size_t n)
 	const size_t stride = std::max<size_t>(1, n / 200000);
 	std::vector<float> s;
 	for (size_t i = 0; i < n; i += stride) s.push_back(is[i]);
-	auto pct = [&](double q) {
-		auto it = s.begin() + static_cast<long>(q * (s.size() - 1));
-		std::nth_element(s.begin(), it, s.end());
-		return static_cast<double>(*it);
-	};
-	const double p5 = pct(0.05), p95 = pct(0.95);
+	const double p5 = quantileInPlace(s, 0.05), p95 = quantileInPlace(s, 0.95);
 	return p95 - p5;
 }
 

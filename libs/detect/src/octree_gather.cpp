@@ -4,17 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "tagmap/parallel.h"
 
 namespace tagmap
 {
-OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, const GatherParams& p, unsigned threads)
+OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, double leaf, const GatherParams& p, unsigned threads)
 	: grid_(grid), params_(p)
 {
-	tree_ = std::make_unique<octomap::OcTree>(grid.cellSize() * p.octreeCellsPerLeaf);
-	// Only occupancy matters: mark each occupied leaf once (a leaf holds up
-	// to octreeCellsPerLeaf^3 voxels; repeated hits only raise its log-odds),
+	// A leaf finer than a voxel would only mark voxel centres: the gather
+	// below visits the voxels under each occupied leaf.
+	if (!(leaf >= grid.cellSize())) throw std::invalid_argument("octree leaf must be at least the voxel cell");
+	tree_ = std::make_unique<octomap::OcTree>(leaf);
+	// Only occupancy matters: mark each occupied leaf once (a leaf holds
+	// several voxels; repeated hits only raise its log-odds),
 	// then let OctoMap fill in the inner nodes.
 	threads = grid.voxelCount() < 65536 ? 1u : resolveThreads(threads);
 	std::vector<std::vector<uint64_t>> parts(threads);

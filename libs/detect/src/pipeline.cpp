@@ -321,7 +321,7 @@ class CandidateDecoder
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for
 		orientOnSupport(t, plane.planeRms);
-		return Verdict::Decoded;
+		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
 	}
 
 	bool sizeAsked(double measured) const
@@ -345,6 +345,22 @@ class CandidateDecoder
 		around.extent = Eigen::Vector3d(side, side, h);
 		fitSupportPlane(t, gatherer_.gather(around, len_.spacing, m_.xs, m_.ys, m_.zs), m_.xs, m_.ys, m_.zs,
 						p_.supportPlane);
+	}
+
+	// The read's printed face looks into free space (front_side.h): the
+	// columns in front of and behind the tag, a few tag sizes deep.
+	bool facesFreeSpace(const TagDetection& t) const
+	{
+		if (!p_.frontSide.enabled) return true;
+		OrientedBox both;
+		both.center = t.position();
+		both.axes = t.pose.linear();
+		// gather() widens the box by `enlarge` and thickens it by its slab.
+		both.extent = Eigen::Vector3d(t.size / p_.gather.enlarge, t.size / p_.gather.enlarge,
+									  2 * p_.frontSide.depthSizes * t.size);
+		const FrontSideEvidence e = measureFrontSide(t, gatherer_.gather(both, len_.spacing, m_.xs, m_.ys, m_.zs),
+													 m_.xs, m_.ys, m_.zs, 2 * len_.planeNoise, p_.frontSide);
+		return !printedFaceLooksIntoSolid(e, p_.frontSide);
 	}
 
 	const PipelineParams& p_;
@@ -440,7 +456,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		return proposeCandidates(m, clusters, filterParams(params_), len, out.candidates);
 	});
 	const auto gatherer = stage.run("octree", grid.voxelCount(), [&] {
-		return std::make_unique<const OctreeGatherer>(grid, params_.gather, threads);
+		return std::make_unique<const OctreeGatherer>(grid, len.octreeLeaf, params_.gather, threads);
 	});
 	const CandidateDecoder decoder(params_, m, *gatherer, len, keepImages);
 	std::vector<TagDetection> found = stage.run("decode", candidates.size(), [&](const CountProgressFn& count) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "tagmap/errors.h"
@@ -97,6 +98,12 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		 {{"enabled", bind(p.supportPlane.enabled)},
 		  {"reach_sizes", bind(p.supportPlane.reachSizes)},
 		  {"step_sigmas", bind(p.supportPlane.stepSigmas)}}},
+		{"front_side",
+		 {{"enabled", bind(p.frontSide.enabled)},
+		  {"depth_sizes", bind(p.frontSide.depthSizes)},
+		  {"columns", bind(p.frontSide.columns)},
+		  {"blocked_fraction", bind(p.frontSide.blockedFraction)},
+		  {"free_fraction", bind(p.frontSide.freeFraction)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -115,13 +122,21 @@ std::string scalarText(const mrpt::containers::yaml& n, const std::string& where
 void loadSection(const mrpt::containers::yaml& node, const std::string& section, std::map<std::string, Binding>& keys,
 				 const std::map<std::string, std::map<std::string, Binding>>& all)
 {
+	std::set<std::string> allowed;
+	for (const auto& [key, binding] : keys) allowed.insert(key);
+	if (section.empty())
+	{
+		for (const auto& [name, sectionKeys] : all)
+			if (!name.empty()) allowed.insert(name);
+		allowed.insert("families");
+	}
+	requireKnownKeys(node, allowed, section.empty() ? "" : section + ".");
 	for (const auto& [k, v] : node.asMap())
 	{
-		const std::string key = scalarText(k, section.empty() ? "a key" : "a key in " + section);
+		const std::string key = yamlScalarText(k);
 		const std::string where = section.empty() ? key : section + "." + key;
-		if (section.empty() && (all.count(key) || key == "families")) continue;
 		auto it = keys.find(key);
-		if (it == keys.end()) throw std::invalid_argument("unknown parameter '" + where + "'");
+		if (it == keys.end()) continue;  // a section or `families`, loaded by the caller
 		try
 		{
 			it->second.load(v);
@@ -241,6 +256,11 @@ void PipelineParams::validate() const
 	if (!(supportPlane.reachSizes >= 0.5 && supportPlane.reachSizes <= 2.5))
 		throw std::invalid_argument("support_plane.reach_sizes must be in [0.5, 2.5]");
 	positive(supportPlane.stepSigmas, "support_plane.step_sigmas");
+	positive(frontSide.depthSizes, "front_side.depth_sizes");
+	if (frontSide.columns < 1 || frontSide.columns > 64) throw std::invalid_argument("front_side.columns must be in [1, 64]");
+	if (!(frontSide.freeFraction >= 0 && frontSide.freeFraction < frontSide.blockedFraction &&
+		  frontSide.blockedFraction <= 1))
+		throw std::invalid_argument("front_side: need 0 <= free_fraction < blocked_fraction <= 1");
 	if (decoder.maxBitsCorrected < 0 || decoder.maxBitsCorrected > 3)
 		throw std::invalid_argument("decoder.max_bits_corrected must be 0..3");
 	// The rest, unchecked, would give silently empty results at best, and

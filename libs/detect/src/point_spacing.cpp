@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/point_spacing.h"
 
 #include <Eigen/Core>
@@ -75,11 +76,7 @@ Eigen::Vector3d robustExtent(const float* xs, const float* ys, const float* zs, 
 	for (int a = 0; a < 3; a++)
 	{
 		for (size_t k = 0; k < samples.size(); k++) v[k] = coords[a][samples[k]];
-		const size_t k1 = v.size() / 100, k99 = v.size() - 1 - v.size() / 100;
-		std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k1), v.end());
-		const double q1 = v[k1];
-		std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k99), v.end());
-		const double q99 = v[k99], range = q99 - q1;
+		const double q1 = quantileInPlace(v, 0.01), q99 = quantileInPlace(v, 0.99), range = q99 - q1;
 		ext[a] = std::min(hi[a], q99 + 10 * range) - std::max(lo[a], q1 - 10 * range);
 	}
 	return ext;
@@ -163,8 +160,7 @@ Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, 
 				}
 		nn.push_back(best);
 	}
-	std::nth_element(nn.begin(), nn.begin() + nn.size() / 2, nn.end());
-	median = nn[nn.size() / 2];
+	median = medianInPlace(nn);
 	return median <= cell ? Pass::Resolved : Pass::TooFine;
 }
 }  // namespace

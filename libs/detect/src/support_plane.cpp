@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/support_plane.h"
 
 #include <Eigen/Dense>
@@ -29,8 +30,7 @@ struct Region
 		std::vector<double> r;
 		for (const auto& p : pts) r.push_back(p.z() - slope.dot(p.head<2>()));
 		std::vector<double> sorted = r;
-		std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
-		const double median = sorted[sorted.size() / 2];
+		const double median = medianInPlace(sorted);
 		std::vector<Eigen::Vector3d> kept;
 		for (size_t k = 0; k < pts.size(); k++)
 			if (std::abs(r[k] - median) <= band) kept.push_back(pts[k]);
@@ -78,11 +78,9 @@ double robustRms(const Region& r, const Eigen::Vector2d& slope)
 {
 	std::vector<double> res;
 	for (const auto& p : r.pts) res.push_back(p.z() - slope.dot(p.head<2>()));
-	std::nth_element(res.begin(), res.begin() + static_cast<long>(res.size() / 2), res.end());
-	const double median = res[res.size() / 2];
+	const double median = medianInPlace(res);
 	for (auto& v : res) v = std::abs(v - median);
-	std::nth_element(res.begin(), res.begin() + static_cast<long>(res.size() / 2), res.end());
-	return 1.4826 * res[res.size() / 2];
+	return 1.4826 * medianInPlace(res);
 }
 }  // namespace
 

@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/surface_noise.h"
 
 #include <Eigen/Eigenvalues>
@@ -60,9 +61,8 @@ double estimateSurfaceNoise(const float* xs, const float* ys, const float* zs, s
 			if (s >= 0) rms.push_back(s);
 		}
 		if (rms.empty()) return 0;
-		auto mid = rms.begin() + static_cast<long>(rms.size() / 2);
-		std::nth_element(rms.begin(), mid, rms.end());
-		if (*mid * p.minRadiusOverNoise <= radius) return *mid;
+		const double median = medianInPlace(rms);
+		if (median * p.minRadiusOverNoise <= radius) return median;
 	}
 	return rms[rms.size() / 2];  // the widest ball's estimate: a lower bound
 }

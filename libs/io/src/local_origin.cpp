@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tagmap/quantile.h"
 #include "tagmap/io/point_cloud_io.h"
 
 namespace tagmap::io
@@ -17,12 +18,11 @@ Eigen::Vector3d chooseLocalOrigin(std::vector<Eigen::Vector3d> points)
 								[](const Eigen::Vector3d& p) { return !(p.cwiseAbs().maxCoeff() <= kMaxAbsCoordinate); }),
 				 points.end());
 	if (points.empty()) return origin;
-	const auto mid = points.begin() + static_cast<std::ptrdiff_t>(points.size() / 2);
+	std::vector<double> axis(points.size());
 	for (int a = 0; a < 3; ++a)
 	{
-		std::nth_element(points.begin(), mid, points.end(),
-						 [a](const Eigen::Vector3d& p, const Eigen::Vector3d& q) { return p[a] < q[a]; });
-		const double median = (*mid)[a];
+		for (size_t k = 0; k < points.size(); ++k) axis[k] = points[k][a];
+		const double median = medianInPlace(axis);
 		// Whole metres: the origin prints exactly, and subtracting it keeps
 		// the digits below the metre as the file had them.
 		if (std::fabs(median) > kLocalOriginBeyond) origin[a] = std::round(median);

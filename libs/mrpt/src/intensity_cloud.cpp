@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/mrpt/intensity_cloud.h"
 
 #include <mrpt/core/format.h>
@@ -17,12 +18,7 @@ std::pair<float, float> percentileRange(const mrpt::aligned_std_vector<float>& v
 {
 	if (values.empty()) return {0.f, 1.f};
 	std::vector<float> v(values.begin(), values.end());
-	const auto at = [&](double q) {
-		auto it = v.begin() + static_cast<long>(q * static_cast<double>(v.size() - 1));
-		std::nth_element(v.begin(), it, v.end());
-		return *it;
-	};
-	const float lo = at(0.01), hi = at(0.99);
+	const float lo = quantileInPlace(v, 0.01), hi = quantileInPlace(v, 0.99);
 	return {lo, hi > lo ? hi : lo + 1.f};
 }
 

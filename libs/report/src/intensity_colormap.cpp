@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/report/intensity_colormap.h"
 
 #include <opencv2/imgproc.hpp>
@@ -16,12 +17,7 @@ IntensityRange percentileRange(const float* values, size_t n, double loPercent, 
 	for (size_t i = 0; i < n; i += stride)
 		if (std::isfinite(values[i])) v.push_back(values[i]);
 	if (v.empty()) return {};
-	auto at = [&](double pct) {
-		const size_t k = std::min(v.size() - 1, static_cast<size_t>(pct / 100.0 * static_cast<double>(v.size() - 1)));
-		std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-		return v[k];
-	};
-	IntensityRange r{at(loPercent), at(hiPercent)};
+	IntensityRange r{quantileInPlace(v, loPercent / 100.0), quantileInPlace(v, hiPercent / 100.0)};
 	if (!(r.hi > r.lo)) r.hi = r.lo + 1;  // constant intensity: one colour, no division by zero
 	return r;
 }

@@ -1,3 +1,4 @@
+#include "tagmap/quantile.h"
 #include "tagmap/report/top_view.h"
 
 #include <Eigen/Eigenvalues>
@@ -60,9 +61,7 @@ ViewFrame chooseAxes(const mrpt::maps::CPointsMapXYZI& map, const std::vector<si
 
 double percentile(std::vector<double> v, double pct)
 {
-	const size_t k = std::min(v.size() - 1, static_cast<size_t>(pct / 100.0 * static_cast<double>(v.size() - 1)));
-	std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-	return v[k];
+	return quantileInPlace(v, pct / 100.0);
 }
 
 // Bounds from percentiles, so a few stray far points do not shrink the map

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tagmap/sim/rng.h"
+#include "tagmap/tag_family.h"
 
 namespace tagmap::sim
 {
@@ -49,12 +50,21 @@ void fillPattern(const DistractorSpec& s, Texture& t)
 			for (int r = 0; r < t.rows; r++)
 				for (int c = 0; c < t.cols; c++) set(r, c, c % 2 ? s.dark : s.light);
 			break;
+		case DistractorKind::MirroredTag:
+		{
+			const TagBitmap bm = renderTagBitmap(s.family, s.id);
+			for (int r = 0; r < t.rows && r < bm.cells; r++)
+				for (int c = 0; c < t.cols && c < bm.cells; c++) set(r, c, bm.at(r, bm.cells - 1 - c) ? s.light : s.dark);
+			break;
+		}
 	}
 }
 }  // namespace
 
-SceneObject makeDistractor(const DistractorSpec& s)
+SceneObject makeDistractor(const DistractorSpec& spec)
 {
+	DistractorSpec s = spec;
+	if (s.kind == DistractorKind::MirroredTag) s.cell = s.width / renderTagBitmap(s.family, s.id).cells;
 	Rect r;
 	r.pose = s.pose;
 	r.pose.translate(Eigen::Vector3d(0, 0, s.offset));

@@ -77,7 +77,7 @@ SceneObject parseObject(const YamlReader& r)
 
 SceneObject parseDistractor(const YamlReader& r)
 {
-	r.allowKeys(withPose({"name", "type", "size", "cell", "fill", "seed", "dark", "light"}));
+	r.allowKeys(withPose({"name", "type", "size", "cell", "fill", "seed", "dark", "light", "family", "id"}));
 	DistractorSpec s;
 	s.name = r.text("name", r.path());
 	const std::string type = r.text("type");
@@ -89,8 +89,26 @@ SceneObject parseDistractor(const YamlReader& r)
 		s.kind = DistractorKind::Text;
 	else if (type == "stripes")
 		s.kind = DistractorKind::Stripes;
+	else if (type == "mirrored_tag")
+		s.kind = DistractorKind::MirroredTag;
 	else
-		r.child("type").fail("unknown distractor type '" + type + "' (checkerboard, random_blocks, text, stripes)");
+		r.child("type").fail("unknown distractor type '" + type +
+							 "' (checkerboard, random_blocks, text, stripes, mirrored_tag)");
+	if (s.kind == DistractorKind::MirroredTag)
+	{
+		s.family = r.text("family");
+		s.id = static_cast<int>(r.integer("id", 0));
+		try
+		{
+			renderTagBitmap(s.family, s.id);  // validates family and id range
+		}
+		catch (const std::invalid_argument& e)
+		{
+			r.fail(e.what());
+		}
+	}
+	else if (r.has("family") || r.has("id"))
+		r.fail("'family' and 'id' are for type mirrored_tag only");
 	s.pose = parsePose(r);
 	const auto sz = r.numbers("size", 2);
 	if (sz[0] <= 0 || sz[1] <= 0) r.child("size").fail("width and height must be > 0");

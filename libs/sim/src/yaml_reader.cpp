@@ -125,14 +125,14 @@ std::vector<std::string> YamlReader::keys() const
 
 void YamlReader::allowKeys(const std::set<std::string>& allowed) const
 {
-	for (const std::string& k : keys())
+	if (!node_->isMap()) fail("expected a map, got " + node_->typeName());
+	try
 	{
-		if (!allowed.count(k))
-		{
-			std::string list;
-			for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-			fail("unknown key '" + k + "' (allowed: " + list + ")");
-		}
+		requireKnownKeys(*node_, allowed);
+	}
+	catch (const std::invalid_argument& e)
+	{
+		fail(e.what());
 	}
 }
 

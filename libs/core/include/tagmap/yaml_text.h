@@ -6,6 +6,7 @@
 
 #include <mrpt/containers/yaml.h>
 
+#include <set>
 #include <string>
 
 namespace tagmap
@@ -25,6 +26,14 @@ namespace tagmap
 /** The text of a YAML scalar (whatever type the tree stored it as); a map
  *  or list -> std::invalid_argument. */
 std::string yamlScalarText(const mrpt::containers::yaml& node);
+
+/** Every key of the map `node` must be in `allowed`; otherwise
+ *  std::invalid_argument "unknown key '<prefix><key>' (allowed: a, b, c)".
+ *  The one unknown-key rule of every tagmap YAML input (scenes and detection
+ *  configuration): a typo is an error that lists what was meant, never a
+ *  silently ignored setting. The caller adds the file and position. */
+void requireKnownKeys(const mrpt::containers::yaml& node, const std::set<std::string>& allowed,
+					  const std::string& prefix = "");
 
 /** The whole of `text` as a finite double (strtod, nothing left over, no
  *  overflow); otherwise std::invalid_argument "'<text>' is not a finite number". */

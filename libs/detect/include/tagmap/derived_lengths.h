@@ -18,10 +18,13 @@ struct DerivedLengths
 	 *  least-squares slope, small enough to resolve a tag's cells. */
 	double gradientRadius = 0;
 	/** The neighbour index's voxel edge: r, so that a point's neighbours
-	 *  within r all lie in its voxel's 3x3x3 block. The octree's leaf is
-	 *  gather.octree_cells_per_leaf of these (OctreeGatherer reads it from
-	 *  the index it is built on). */
+	 *  within r all lie in its voxel's 3x3x3 block. */
 	double voxelCell = 0;
+	/** The occupancy octree's leaf edge: gather.octree_cells_per_leaf
+	 *  voxels. Coarse enough that the tree stays a fraction of the index
+	 *  (one leaf per up to 4^3 occupied voxels), fine enough that a gather
+	 *  box skips the empty space of a room at a tag's scale. */
+	double octreeLeaf = 0;
 	/** How far a candidate's box may reach beyond the tag's border: kept
 	 *  edge points lie up to r outside the black border ring, so the size
 	 *  criterion allows the box this much wider on each side. */
@@ -38,6 +41,7 @@ struct DerivedLengths
 		d.spacing = spacing;
 		d.gradientRadius = p.gradientRadiusSpacings * spacing;
 		d.voxelCell = d.gradientRadius;
+		d.octreeLeaf = p.gather.octreeCellsPerLeaf * d.voxelCell;
 		d.candidateBand = d.gradientRadius;
 		d.planeNoise = 2 * spacing;
 		return d;

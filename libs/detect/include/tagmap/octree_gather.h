@@ -24,14 +24,16 @@ struct GatherParams
 	/** Half thickness of the gathered slab, in point spacings, on top of the
 	 *  box's own half height: keeps the tag's plane, drops what is behind. */
 	double slabSpacings = 4.0;
-	int octreeCellsPerLeaf = 4;  // octree leaf edge = this many neighbour-grid voxels
+	int octreeCellsPerLeaf = 4;  // octree leaf edge = this many neighbour-grid voxels (DerivedLengths::octreeLeaf)
 };
 
 class OctreeGatherer
 {
    public:
-	/** `threads`: for the build (0: all cores; the tree does not depend on it). */
-	OctreeGatherer(const VoxelGrid& grid, const GatherParams& p, unsigned threads = 0);
+	/** An occupancy tree with leaves of edge `leaf` (metres, at least the
+	 *  grid's cell) over the grid's occupied voxels. `threads`: for the
+	 *  build (0: all cores; the tree does not depend on it). */
+	OctreeGatherer(const VoxelGrid& grid, double leaf, const GatherParams& p, unsigned threads = 0);
 	~OctreeGatherer();
 
 	/** Map indices of the points inside `box` enlarged by the parameters. */

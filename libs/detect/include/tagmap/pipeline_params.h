@@ -18,6 +18,7 @@
 #include "tagmap/read_evidence.h"
 #include "tagmap/point_spacing.h"
 #include "tagmap/soft_decoder.h"
+#include "tagmap/front_side.h"
 #include "tagmap/support_plane.h"
 #include "tagmap/tag_decoder.h"
 
@@ -50,6 +51,7 @@ struct PipelineParams
 	ReadEvidenceParams evidence;
 	PatternRefinementParams refinement;
 	SupportPlaneParams supportPlane;
+	FrontSideParams frontSide;
 
 	/** Reads the keys present in `y` over the defaults; throws
 	 *  std::invalid_argument naming an unknown key or an invalid value. */

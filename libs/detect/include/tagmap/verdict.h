@@ -23,6 +23,7 @@ enum class Verdict
 	NoQuietZone,
 	SizeMismatch,
 	PatternMismatch,
+	WrongSide,
 	Decoded,
 };
 
@@ -33,7 +34,7 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 12> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 13> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
@@ -51,6 +52,9 @@ inline constexpr std::array<VerdictInfo, 12> kVerdicts = {{
 	 "decoded, but the decoded square is not a tag size asked for (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::PatternMismatch, "pattern_mismatch",
 	 "decoded, but the points disagree with the bitmap (refinement.min_pattern_fit)"},
+	{Verdict::WrongSide, "wrong_side",
+	 "decoded, but its printed face would look into the solid body behind it, with free space on its other "
+	 "side: the mirror image of a tag (front_side)"},
 	{Verdict::Decoded, "decoded", "a tag was read and its points match the tag's bitmap"},
 }};
 

@@ -1,7 +1,8 @@
 // High-contrast things that are NOT tags, to keep the detector honest:
 // checkerboards (square, black/white, bordered like a tag), posters of random
 // blocks (tag-like bit patterns without a valid code), text-like lines of
-// blocks, and lane stripes.
+// blocks, lane stripes, and mirror-printed tags (a tag's bitmap flipped
+// left-right: no valid code from the front, only seen from behind).
 #pragma once
 
 #include <cstdint>
@@ -16,7 +17,8 @@ enum class DistractorKind
 	Checkerboard,
 	RandomBlocks,
 	Text,
-	Stripes
+	Stripes,
+	MirroredTag
 };
 
 struct DistractorSpec
@@ -30,6 +32,10 @@ struct DistractorSpec
 	uint64_t seed = 1;  // pattern of RandomBlocks/Text (part of the scene, not of the run)
 	float dark = 0.06f, light = 0.85f;
 	double offset = 1e-4;  // standoff from the mounting surface
+	/** MirroredTag: the tag whose bitmap is printed mirrored; the sheet is
+	 *  its whole bitmap (width = height), so cell = width / bitmap cells. */
+	std::string family;
+	int id = 0;
 };
 
 SceneObject makeDistractor(const DistractorSpec& spec);
