@@ -7,7 +7,9 @@
 //  - insertObservation(): LiDAR observations with intensity accumulate points;
 //    tags are detected on demand (tags()) by tagmap::Pipeline.
 //  - computeObservationLikelihood(): CObservationBeaconRanges against the tag
-//    centres, beacon IDs as in tagmap/mrpt/beacon_id.h (as CLandmarksMap does).
+//    centres, beacon IDs as in tagmap/mrpt/beacon_id.h (as CLandmarksMap does);
+//    CObservationTagPoses by each seen tag's 6-DoF pose against the mapped
+//    tag (robust Gaussian, CTagMap_likelihood.cpp).
 //  - getVisualizationInto(): tags with their real bitmaps, labels, axes, and
 //    optionally the points coloured by intensity.
 //  - asString(): a table family / id / size / position / roll-pitch-yaw.
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "tagmap/maps/tag_map_options.h"
+#include "tagmap/obs/CObservationTagPoses.h"
 #include "tagmap/pipeline_params.h"
 #include "tagmap/tag_detection.h"
 
@@ -80,6 +83,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 	double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
 												 const mrpt::poses::CPose3D& takenFrom) const override;
 	bool internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const override;
+	double tagPosesLogLikelihood(const obs::CObservationTagPoses& o, const mrpt::poses::CPose3D& robotPose) const;
 };
 
 }  // namespace tagmap::maps
