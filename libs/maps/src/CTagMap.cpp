@@ -31,6 +31,7 @@ const std::vector<TagDetection>& CTagMap::tags() const
 void CTagMap::setTags(std::vector<TagDetection> tags)
 {
 	m_tags = std::move(tags);
+	m_beaconIds.clear();
 	m_tagsStale = false;
 }
 
@@ -46,6 +47,7 @@ void CTagMap::internal_clear()
 {
 	m_points.clear();
 	m_tags.clear();
+	m_beaconIds.clear();
 	m_tagsStale = false;
 }
 
@@ -135,6 +137,7 @@ void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 	}
 	else
 		m_tags = readTagDetections(in);
+	m_beaconIds.clear();
 	in >> m_points >> m_tagsStale;
 }
 

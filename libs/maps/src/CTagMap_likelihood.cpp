@@ -45,6 +45,17 @@ TagPoseNoise tagPoseNoise(const TTagLikelihoodOptions& o)
 }
 }  // namespace
 
+const std::vector<int64_t>& CTagMap::beaconIds() const
+{
+	const auto& ts = tags();
+	if (m_beaconIds.size() != ts.size())
+	{
+		m_beaconIds.clear();
+		for (const auto& t : ts) m_beaconIds.push_back(mrpt_bridge::encodeBeaconId(t.family, t.id));
+	}
+	return m_beaconIds;
+}
+
 double CTagMap::tagPosesLogLikelihood(const obs::CObservationTagPoses& o, const mrpt::poses::CPose3D& robotPose) const
 {
 	const TagPoseNoise noise = tagPoseNoise(likelihoodOptions);
@@ -90,8 +101,9 @@ double CTagMap::internal_computeObservationLikelihood(const mrpt::obs::CObservat
 		if (std::isnan(meas.sensedDistance)) continue;
 		const mrpt::poses::CPoint3D sensor = robotPose + meas.sensorLocationOnRobot;
 		const TagDetection* tag = nullptr;
-		for (const auto& t : tags())
-			if (mrpt_bridge::encodeBeaconId(t.family, t.id) == static_cast<int64_t>(meas.beaconID)) tag = &t;
+		const std::vector<int64_t>& ids = beaconIds();
+		for (size_t i = 0; i < ids.size(); i++)
+			if (ids[i] == static_cast<int64_t>(meas.beaconID)) tag = &tags()[i];
 		if (!tag)
 		{
 			logLik += logUniform;

@@ -76,6 +76,11 @@ class CTagMap : public mrpt::maps::CMetricMap
 	// Detection is lazy, so a const map can still bring its tags up to date.
 	mutable std::vector<TagDetection> m_tags;
 	mutable bool m_tagsStale = false;
+	// encodeBeaconId of each tag, for the range likelihood (a family lookup
+	// per tag, particle and range made the demo's range-only PF 4.6 s instead
+	// of 1.9 s). Cleared wherever m_tags is replaced; rebuilt on demand.
+	mutable std::vector<int64_t> m_beaconIds;
+	const std::vector<int64_t>& beaconIds() const;
 
 	void internal_clear() override;
 	bool internal_insertObservation(const mrpt::obs::CObservation& obs,
