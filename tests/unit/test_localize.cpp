@@ -215,6 +215,36 @@ INSTANTIATE_TEST_SUITE_P(Models, LocalizeParticleFilterModel,
 						 ::testing::Values(PfObservations::tagPoses, PfObservations::ranges),
 						 [](const auto& p) { return p.param == PfObservations::tagPoses ? "poses" : "ranges"; });
 
+TEST(LocalizeParticleFilter, WithoutOdometryTheTagPosesStillTrack)
+{
+	// --no-odometry: zero increments, motion noise for the time between
+	// scans, here wide enough for the lap (0.4 m, or a 90 deg turn, per 0.1 s).
+	const std::vector<TagDetection> mapTags = {tag(0, pose(0, 1.3, 1.5, 0, 90)), tag(1, pose(5.2, 8, 1.6, -90, 90)),
+											   tag(2, pose(16, 2.4, 1.5, 180, 90)), tag(3, pose(9.5, 0, 1.3, 90, 90))};
+	std::vector<mrpt::poses::CPose2D> truth;
+	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
+	for (auto& s : steps) s.odometry = mrpt::poses::CPose2D(9, 9, 1);  // must be ignored
+	PfParams params;
+	params.globalParticles = 10000;
+	params.noOdometry = true;
+	params.noOdometrySpeed = 5;
+	params.noOdometryTurnRateDeg = 1000;  // the lap turns 90 deg within one step
+	const PfResult r = runParticleFilter(mapTags, steps, params);
+	ASSERT_GE(r.convergedAtStep, 0);
+	EXPECT_LT(r.convergedAtStep, 3);
+	// Noise that wide leaves few particles near the truth in some steps:
+	// the RMSE, not every step, is within 5 cm.
+	double sum2 = 0;
+	size_t n = 0;
+	for (size_t k = static_cast<size_t>(r.convergedAtStep) + 1; k < steps.size(); k++, n++)
+	{
+		const mrpt::poses::CPose3D lidar = mrpt::poses::CPose3D(truth[k]) + steps[k].sensorPose;
+		const Eigen::Vector3d got = r.trajectory[k].pose.translation();
+		sum2 += std::pow(std::hypot(got.x() - lidar.x(), got.y() - lidar.y()), 2);
+	}
+	EXPECT_LT(std::sqrt(sum2 / static_cast<double>(n)), 0.05);
+}
+
 TEST(LocalizeParticleFilter, FewerGlobalThanTrackingParticles)
 {
 	// MRPT 2.5's own resampling to a larger count reads past its array and
