@@ -39,7 +39,8 @@ const char* kUsage =
 	"  --seed N          random seed of the particle filter (default 1)\n"
 	"  --model M         pf observation model: poses (each tag's 6-DoF pose, default) or\n"
 	"                    ranges (range-only beacons)\n"
-	"  --no-odometry     pf without odometry: zero increments, motion noise for 1 m/s\n"
+	"  --no-odometry     pf without odometry: zero increments, motion noise for up to\n"
+	"                    1 m/s and 30 deg/s over the time between scans\n"
 	"  --quiet           no progress and no summary line (the errors JSON is still printed)\n";
 
 }  // namespace
