@@ -1,8 +1,9 @@
 # Localization (docs/LOCALIZATION.md): unit tests, single-scan relocalization
 # at 4 m, and the reduced end-to-end demo (scripts/localize-demo.sh --quick)
-# asserting the particle filter converges and tracks within 0.10 m.
+# asserting the particle filter (tag poses) converges within 10 steps and tracks
+# within 1 cm and 0.3 degrees.
 tagmap_test(test_localize
-  SOURCES unit/test_localize.cpp unit/test_localize_single_scan.cpp
+  SOURCES unit/test_localize.cpp unit/test_localize_odometry.cpp unit/test_localize_single_scan.cpp
   LIBS tagmap_localize tagmap_sim tagmap_maps)
 
 add_test(NAME localize_e2e

@@ -23,11 +23,13 @@ namespace
 {
 const char* kUsage =
 	"Usage: tagmap localize --map TAGS.json --rawlog OBS.rawlog --method pf|direct --out TRAJ.tum\n"
-	"                       [--truth TRUE.tum [--errors ERR.json]] [--particles N] [--seed N] [--quiet]\n"
+	"                       [--truth TRUE.tum [--errors ERR.json]] [--particles N] [--seed N]\n"
+	"                       [--model poses|ranges] [--no-odometry] [--quiet]\n"
 	"Localizes the LiDAR of OBS.rawlog (written by `tagmap observe`) in the tag map TAGS.json\n"
 	"(a `tagmap detect` result) and writes the sensor poses as TUM lines.\n"
-	"  --method pf       MRPT's particle filter (CMonteCarloLocalization2D) on the tags as\n"
-	"                    range-only beacons, from a uniform belief over the map, with odometry\n"
+	"  --method pf       MRPT's particle filter (CMonteCarloLocalization2D) on the tag map\n"
+	"                    (CTagMap), from a uniform belief over the map, with odometry (actions\n"
+	"                    or CObservationOdometry; none is an error unless --no-odometry)\n"
 	"  --method direct   T_G_sensor = T_G_tag * T_sensor_tag^-1 per scan, fused over the\n"
 	"                    visible tags; scans without a mapped tag get no pose\n"
 	"  --truth TRUE.tum  score against ground truth (poses paired by time stamp) and print\n"
@@ -35,6 +37,10 @@ const char* kUsage =
 	"  --errors ERR.json also write that JSON\n"
 	"  --particles N     particles of the global (uniform) phase (default 40000)\n"
 	"  --seed N          random seed of the particle filter (default 1)\n"
+	"  --model M         pf observation model: poses (each tag's 6-DoF pose, default) or\n"
+	"                    ranges (range-only beacons)\n"
+	"  --no-odometry     pf without odometry: zero increments, motion noise for up to\n"
+	"                    1 m/s and 30 deg/s over the time between scans\n"
 	"  --quiet           no progress and no summary line (the errors JSON is still printed)\n";
 
 }  // namespace
@@ -44,8 +50,8 @@ int runLocalize(int argc, char** argv)
 	return cli::runCommand("localize", [&] {
 		const cli::Args a = cli::parse(argc, argv, 1,
 									   {"--map", "--rawlog", "--method", "--out", "--truth", "--errors", "--particles",
-										"--seed"},
-									   {"--quiet", "--help"});
+										"--seed", "--model"},
+									   {"--quiet", "--help", "--no-odometry"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage;
@@ -64,6 +70,12 @@ int runLocalize(int argc, char** argv)
 		if (particles < 100 || particles > 10000000)
 			throw cli::UsageError("--particles must be between 100 and 10000000");
 		if (seed < 0 || seed > 4294967295L) throw cli::UsageError("--seed must be between 0 and 4294967295");
+		const std::string model = a.has("--model") ? a.get("--model") : "poses";
+		if (model != "poses" && model != "ranges") throw cli::UsageError("--model must be poses or ranges");
+		if ((a.has("--model") || a.has("--no-odometry")) && method != "pf")
+			throw cli::UsageError("--model and --no-odometry are for --method pf");
+		pf.observations = model == "poses" ? localize::PfObservations::tagPoses : localize::PfObservations::ranges;
+		pf.noOdometry = a.has("--no-odometry");
 		pf.globalParticles = static_cast<size_t>(particles);
 		pf.seed = static_cast<uint32_t>(seed);
 
@@ -76,7 +88,10 @@ int runLocalize(int argc, char** argv)
 		const bool quiet = a.has("--quiet");
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("reading", 0, 0);
-		const auto steps = localize::localizationSteps(io::loadRawlog(a.get("--rawlog")), a.get("--rawlog"));
+		const localize::OdometryUse odometry = method == "direct" ? localize::OdometryUse::optional
+											   : pf.noOdometry	  ? localize::OdometryUse::ignored
+																  : localize::OdometryUse::required;
+		const auto steps = localize::localizationSteps(io::loadRawlog(a.get("--rawlog")), a.get("--rawlog"), odometry);
 		progress.update("reading", steps.size(), steps.size());
 		localize::Trajectory estimate;
 		std::string extra = "\"method\": \"" + method + "\", \"steps\": " + std::to_string(steps.size());

@@ -43,6 +43,12 @@ CASE=seed-negative
 localize_rejects "--seed must be between" --map "$MAP" --rawlog "$OBS" --method pf --seed -1
 CASE=seed-too-big
 localize_rejects "--seed must be between" --map "$MAP" --rawlog "$OBS" --method pf --seed 4294967296
+CASE=model-unknown
+localize_rejects "--model must be poses or ranges" --map "$MAP" --rawlog "$OBS" --method pf --model icp
+CASE=model-for-direct
+localize_rejects "--model and --no-odometry are for --method pf" --map "$MAP" --rawlog "$OBS" --method direct --model ranges
+CASE=no-odometry-for-direct
+localize_rejects "--model and --no-odometry are for --method pf" --map "$MAP" --rawlog "$OBS" --method direct --no-odometry
 CASE=errors-without-truth
 localize_rejects "--errors needs --truth" --map "$MAP" --rawlog "$OBS" --method pf --errors "$L/e.json"
 CASE=map-missing

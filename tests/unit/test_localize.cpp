@@ -2,6 +2,7 @@
 // beacon ranges, trajectory scoring, and the CObservationTagPoses round trip.
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
+#include <mrpt/math/wrap2pi.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
@@ -135,7 +136,7 @@ namespace
 {
 /** A robot driving a lap of a 16 x 8 m hall with six tags at irregular
  *  places on its walls (a regular layout would have mirror solutions for a
- *  range-only filter); exact odometry and ranges. */
+ *  range-only filter); exact odometry, ranges and tag poses. */
 std::vector<LocalizationStep> hallLap(const std::vector<TagDetection>& mapTags, std::vector<mrpt::poses::CPose2D>& truth)
 {
 	std::vector<LocalizationStep> steps;
@@ -158,6 +159,8 @@ std::vector<LocalizationStep> hallLap(const std::vector<TagDetection>& mapTags, 
 		for (const TagDetection& t : mapTags) seen.push_back(tag(t.id, T_G_sensor.inverse() * t.pose));
 		s.ranges = makeBeaconRanges(seen, lidarOnRobot);
 		s.tags = obs::CObservationTagPoses::Create();
+		s.tags->sensorPose = lidarOnRobot;
+		s.tags->tags = seen;
 		steps.push_back(s);
 		truth.push_back(robot);
 		previous = robot;
@@ -166,7 +169,11 @@ std::vector<LocalizationStep> hallLap(const std::vector<TagDetection>& mapTags, 
 }
 }  // namespace
 
-TEST(LocalizeParticleFilter, ConvergesFromUniformAndReportsEveryStep)
+class LocalizeParticleFilterModel : public ::testing::TestWithParam<PfObservations>
+{
+};
+
+TEST_P(LocalizeParticleFilterModel, ConvergesFromUniformAndReportsEveryStep)
 {
 	const std::vector<TagDetection> mapTags = {
 		tag(0, pose(0, 1.3, 1.5, 0, 90)),   tag(1, pose(0, 6.1, 1.2, 0, 90)),  tag(2, pose(5.2, 8, 1.6, -90, 90)),
@@ -174,6 +181,7 @@ TEST(LocalizeParticleFilter, ConvergesFromUniformAndReportsEveryStep)
 	std::vector<mrpt::poses::CPose2D> truth;
 	const std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
 	PfParams params;
+	params.observations = GetParam();
 	params.globalParticles = 20000;
 	std::vector<std::pair<size_t, size_t>> calls;
 	const PfResult r =
@@ -187,15 +195,54 @@ TEST(LocalizeParticleFilter, ConvergesFromUniformAndReportsEveryStep)
 	for (size_t k = 0; k < calls.size(); k++) EXPECT_EQ(calls[k], std::make_pair(k + 1, steps.size()));
 	ASSERT_EQ(r.trajectory.size(), steps.size());
 	ASSERT_GE(r.convergedAtStep, 0);
-	EXPECT_LT(r.convergedAtStep, 40);
+	// Tag poses fix position and heading in one scan; ranges need motion.
+	const bool poses = GetParam() == PfObservations::tagPoses;
+	EXPECT_LT(r.convergedAtStep, poses ? 3 : 40);
 	// After convergence the estimate follows the truth (the LiDAR pose, so
-	// compare the LiDAR's true position).
+	// compare the LiDAR's true pose).
 	for (size_t k = static_cast<size_t>(r.convergedAtStep) + 5; k < steps.size(); k++)
 	{
 		const mrpt::poses::CPose3D lidar = mrpt::poses::CPose3D(truth[k]) + steps[k].sensorPose;
 		const Eigen::Vector3d got = r.trajectory[k].pose.translation();
-		EXPECT_LT(std::hypot(got.x() - lidar.x(), got.y() - lidar.y()), 0.10) << "step " << k;
+		EXPECT_LT(std::hypot(got.x() - lidar.x(), got.y() - lidar.y()), poses ? 0.02 : 0.10) << "step " << k;
+		if (!poses) continue;
+		const double yaw = std::atan2(r.trajectory[k].pose.linear()(1, 0), r.trajectory[k].pose.linear()(0, 0));
+		EXPECT_LT(std::abs(mrpt::math::wrapToPi(yaw - lidar.yaw())), 0.3 * M_PI / 180) << "step " << k;
 	}
+}
+
+INSTANTIATE_TEST_SUITE_P(Models, LocalizeParticleFilterModel,
+						 ::testing::Values(PfObservations::tagPoses, PfObservations::ranges),
+						 [](const auto& p) { return p.param == PfObservations::tagPoses ? "poses" : "ranges"; });
+
+TEST(LocalizeParticleFilter, WithoutOdometryTheTagPosesStillTrack)
+{
+	// --no-odometry: zero increments, motion noise for the time between
+	// scans, here wide enough for the lap (0.4 m, or a 90 deg turn, per 0.1 s).
+	const std::vector<TagDetection> mapTags = {tag(0, pose(0, 1.3, 1.5, 0, 90)), tag(1, pose(5.2, 8, 1.6, -90, 90)),
+											   tag(2, pose(16, 2.4, 1.5, 180, 90)), tag(3, pose(9.5, 0, 1.3, 90, 90))};
+	std::vector<mrpt::poses::CPose2D> truth;
+	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
+	for (auto& s : steps) s.odometry = mrpt::poses::CPose2D(9, 9, 1);  // must be ignored
+	PfParams params;
+	params.globalParticles = 10000;
+	params.noOdometry = true;
+	params.noOdometrySpeed = 5;
+	params.noOdometryTurnRateDeg = 1000;  // the lap turns 90 deg within one step
+	const PfResult r = runParticleFilter(mapTags, steps, params);
+	ASSERT_GE(r.convergedAtStep, 0);
+	EXPECT_LT(r.convergedAtStep, 3);
+	// Noise that wide leaves few particles near the truth in some steps:
+	// the RMSE, not every step, is within 5 cm.
+	double sum2 = 0;
+	size_t n = 0;
+	for (size_t k = static_cast<size_t>(r.convergedAtStep) + 1; k < steps.size(); k++, n++)
+	{
+		const mrpt::poses::CPose3D lidar = mrpt::poses::CPose3D(truth[k]) + steps[k].sensorPose;
+		const Eigen::Vector3d got = r.trajectory[k].pose.translation();
+		sum2 += std::pow(std::hypot(got.x() - lidar.x(), got.y() - lidar.y()), 2);
+	}
+	EXPECT_LT(std::sqrt(sum2 / static_cast<double>(n)), 0.05);
 }
 
 TEST(LocalizeParticleFilter, FewerGlobalThanTrackingParticles)

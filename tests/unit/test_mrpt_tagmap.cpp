@@ -46,6 +46,8 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	m.detectionParams.tagSize = 0.5;
 	m.detectionParams.gradient.threshold = 0.1234567890123;  // every digit must survive the YAML text
 	m.likelihoodOptions.beaconRangesStd = 0.123;
+	m.likelihoodOptions.tagPoseOutlierSigmas = 3.5;
+	m.likelihoodOptions.mapTagStdRotationDeg = 0.7;
 	m.visualOptions.showPoints = false;
 	m.setPoints(mrpt_test::syntheticWallMap(tags));
 	m.setTags(tags);
@@ -64,6 +66,8 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	EXPECT_EQ(back->detectionParams.tagSize, 0.5);
 	EXPECT_EQ(back->detectionParams.gradient.threshold, 0.1234567890123);
 	EXPECT_EQ(back->likelihoodOptions.beaconRangesStd, 0.123);
+	EXPECT_EQ(back->likelihoodOptions.tagPoseOutlierSigmas, 3.5);
+	EXPECT_EQ(back->likelihoodOptions.mapTagStdRotationDeg, 0.7);
 	EXPECT_FALSE(back->visualOptions.showPoints);
 }
 

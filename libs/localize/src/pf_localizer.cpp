@@ -11,7 +11,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "tagmap/mrpt/landmarks_map.h"
+#include <mrpt/maps/CMultiMetricMap.h>
+
+#include "tagmap/maps/CTagMap.h"
 
 namespace tagmap::localize
 {
@@ -36,12 +38,22 @@ Bounds mapBounds(const std::vector<TagDetection>& tags, double margin)
 }
 
 /** The step's odometry under the filter's motion model (a zero increment
- *  when the robot did not move: the PF needs an action). */
-mrpt::obs::CActionCollection actionsOf(const LocalizationStep& s, const PfParams& params)
+ *  when the robot did not move: the PF needs an action). Without odometry,
+ *  a zero increment with noise for `dt` seconds of unknown motion. */
+mrpt::obs::CActionCollection actionsOf(const LocalizationStep& s, double dt, const PfParams& params)
 {
+	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions model = params.motionModel;
+	mrpt::poses::CPose2D odometry = s.odometry;
+	if (params.noOdometry)
+	{
+		odometry = mrpt::poses::CPose2D();
+		auto& g = model.gaussianModel;
+		g.minStdXY = std::max<double>(g.minStdXY, params.noOdometrySpeed * dt);
+		g.minStdPHI = std::max<double>(g.minStdPHI, mrpt::DEG2RAD(params.noOdometryTurnRateDeg) * dt);
+	}
 	mrpt::obs::CActionRobotMovement2D move;
 	move.timestamp = s.tags->timestamp;
-	move.computeFromOdometry(s.odometry, params.motionModel);
+	move.computeFromOdometry(odometry, model);
 	mrpt::obs::CActionCollection actions;
 	actions.insert(move);
 	return actions;
@@ -104,13 +116,72 @@ mrpt::obs::CActionRobotMovement2D::TMotionModelOptions PfParams::defaultMotionMo
 	return m;
 }
 
+namespace
+{
+/** Ranges: the std follows the belief's position spread (see the header). */
+void annealRanges(maps::TTagLikelihoodOptions& o, const PfParams& params, const Spread& spread)
+{
+	o.beaconRangesStd = std::clamp(spread.position, params.trackingRangeStd, params.globalRangeStd);
+}
+
+/** Tag poses: the belief's spread added to every tag's std, capped. */
+void annealPoses(maps::TTagLikelihoodOptions& o, const PfParams& params, const Spread& spread)
+{
+	o.tagPoseExtraStdPosition = std::min(params.annealWidth * spread.position, params.globalPoseStdPosition);
+	o.tagPoseExtraStdRotationDeg =
+		std::min(params.annealWidth * mrpt::RAD2DEG(spread.heading), params.globalPoseStdRotationDeg);
+}
+
+/** No motion, a little noise: a resampled set (duplicates) spreads out
+ *  between annealing passes, a fraction of the belief's spread. */
+mrpt::obs::CActionCollection jitterOf(const Spread& spread, const PfParams& params)
+{
+	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m = PfParams::defaultMotionModel();
+	m.gaussianModel.minStdXY = params.annealJitter * spread.position;
+	m.gaussianModel.minStdPHI = params.annealJitter * spread.heading;
+	mrpt::obs::CActionRobotMovement2D move;
+	move.computeFromOdometry(mrpt::poses::CPose2D(), m);
+	mrpt::obs::CActionCollection actions;
+	actions.insert(move);
+	return actions;
+}
+
+/** Tag poses, one step: predict, then update in passes with the likelihood
+ *  as wide as the belief, narrowing as the belief does (annealing), until it
+ *  stops narrowing. One update at the final width would leave a uniform
+ *  start's 40 000 particles with a handful, or none, near the truth (a wrong
+ *  particle then wins and the sharp model cannot move it: every tag is an
+ *  outlier there); a broad update alone would leave a broad estimate. */
+Spread updateWithPoses(mrpt::bayes::CParticleFilter& pf, mrpt::slam::CMonteCarloLocalization2D& pdf,
+					   maps::TTagLikelihoodOptions& o, const mrpt::obs::CActionCollection& actions,
+					   const mrpt::obs::CSensoryFrame& sf, const PfParams& params)
+{
+	const mrpt::obs::CSensoryFrame none;
+	pf.executeOn(pdf, &actions, &none);
+	Spread spread = spreadOf(pdf);
+	for (int pass = 0; !sf.empty() && pass < params.annealPasses; pass++)
+	{
+		annealPoses(o, params, spread);
+		const mrpt::obs::CActionCollection jitter = jitterOf(spread, params);
+		pf.executeOn(pdf, &jitter, &sf);
+		const Spread before = spread;
+		spread = spreadOf(pdf);
+		if (spread.position > 0.8 * before.position && spread.heading > 0.8 * before.heading) break;
+	}
+	return spread;
+}
+}  // namespace
+
 PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::vector<LocalizationStep>& steps,
 						   const PfParams& params, const CountProgressFn& progress)
 {
 	if (mapTags.empty()) throw std::invalid_argument("the tag map is empty");
-	auto map = std::make_shared<mrpt::maps::CLandmarksMap>(mrpt_bridge::tagsToLandmarksMap(mapTags));
-	map->likelihoodOptions.beaconRangesUseObservationStd = false;
-	map->likelihoodOptions.beaconRangesStd = static_cast<float>(params.globalRangeStd);
+	// The tag map as MRPT's apps hold it: a CTagMap in a CMultiMetricMap.
+	auto tagMap = maps::CTagMap::Create();
+	tagMap->setTags(mapTags);
+	tagMap->likelihoodOptions.beaconRangesUseObservationStd = false;
+	auto map = mrpt::maps::CMultiMetricMap::Create();
+	map->maps.push_back(tagMap);
 
 	mrpt::slam::CMonteCarloLocalization2D pdf(params.globalParticles);
 	pdf.options.metricMap = map;
@@ -118,6 +189,7 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 	mrpt::random::getRandomGenerator().randomize(params.seed);
 	const Bounds b = mapBounds(mapTags, params.mapMargin);
 	pdf.resetUniform(b.xmin, b.xmax, b.ymin, b.ymax, -M_PI, M_PI, static_cast<int>(params.globalParticles));
+	annealRanges(tagMap->likelihoodOptions, params, spreadOf(pdf));
 
 	mrpt::bayes::CParticleFilter pf;
 	pf.m_options.PF_algorithm = mrpt::bayes::CParticleFilter::pfStandardProposal;
@@ -128,24 +200,34 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 	for (size_t k = 0; k < steps.size(); k++)
 	{
 		const LocalizationStep& s = steps[k];
-		const mrpt::obs::CActionCollection actions = actionsOf(s, params);
-		// Only the ranges: the scan itself means nothing to a beacon map.
+		const double dt = k > 0 ? s.stamp - steps[k - 1].stamp : 0.0;
+		const mrpt::obs::CActionCollection actions = actionsOf(s, dt, params);
+		// One model only: the map scores both observation types, and the
+		// ranges repeat what the poses say (counted twice, they would make
+		// the filter overconfident). The scan itself means nothing to a tag map.
 		mrpt::obs::CSensoryFrame sf;
-		if (!s.ranges->sensedData.empty()) sf.insert(s.ranges);
-		pf.executeOn(pdf, &actions, &sf);
+		Spread spread;
+		if (params.observations == PfObservations::tagPoses)
+		{
+			if (!s.tags->tags.empty()) sf.insert(s.tags);
+			spread = updateWithPoses(pf, pdf, tagMap->likelihoodOptions, actions, sf, params);
+		}
+		else
+		{
+			if (!s.ranges->sensedData.empty()) sf.insert(s.ranges);
+			pf.executeOn(pdf, &actions, &sf);
+			spread = spreadOf(pdf);
+			annealRanges(tagMap->likelihoodOptions, params, spread);
+		}
 
 		// Ranges say nothing about heading: a tight position blob can still
 		// hold every heading, so convergence needs both spreads small.
-		const Spread spread = spreadOf(pdf);
 		if (r.convergedAtStep < 0 && spread.position < params.convergedSpread &&
 			spread.heading < params.convergedHeadingDeg * M_PI / 180)
 		{
 			r.convergedAtStep = static_cast<long>(k);
 			resampleTo(pdf, params.trackingParticles);
 		}
-		// Anneal: the likelihood is about as wide as the belief.
-		map->likelihoodOptions.beaconRangesStd =
-			static_cast<float>(std::clamp(spread.position, params.trackingRangeStd, params.globalRangeStd));
 		mrpt::poses::CPose2D mean;
 		pdf.getMean(mean);
 		StampedPose p;

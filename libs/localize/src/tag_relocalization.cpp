@@ -2,36 +2,15 @@
 
 #include <cmath>
 
+#include "tagmap/maps/tag_pose_model.h"
+
 namespace tagmap::localize
 {
-namespace
-{
-Eigen::Matrix3d skew(const Eigen::Vector3d& v)
-{
-	Eigen::Matrix3d S;
-	S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-	return S;
-}
-
-/** The covariance, or a diagonal one of the given standard deviations where
- *  it is missing, with its diagonal raised to the floors. */
-Matrix6d usableCovariance(const Matrix6d& c, double stdPos, double stdRotDeg, bool onlyIfMissing)
-{
-	const double vp = stdPos * stdPos, vr = std::pow(stdRotDeg * M_PI / 180, 2);
-	Matrix6d out = c;
-	if (!c.allFinite() || c.diagonal().isZero(0)) out.setZero();
-	else if (onlyIfMissing)
-		return out;
-	for (int i = 0; i < 6; i++) out(i, i) = std::max(out(i, i), i < 3 ? vp : vr);
-	return out;
-}
-
-Eigen::Vector3d rotationLog(const Eigen::Matrix3d& R)
-{
-	const Eigen::AngleAxisd aa(R);
-	return aa.angle() * aa.axis();
-}
-}  // namespace
+// The floors, skew and rotation log are shared with CTagMap's likelihood of
+// CObservationTagPoses (tag_pose_model.h), so the PF and this agree.
+using maps::rotationLog;
+using maps::skew;
+using maps::usableCovariance;
 
 PoseWithCovariance sensorPoseFromTag(const TagDetection& mapTag, const TagDetection& seen,
 									 const RelocalizationParams& params)

@@ -31,6 +31,7 @@ const std::vector<TagDetection>& CTagMap::tags() const
 void CTagMap::setTags(std::vector<TagDetection> tags)
 {
 	m_tags = std::move(tags);
+	m_beaconIds.clear();
 	m_tagsStale = false;
 }
 
@@ -46,6 +47,7 @@ void CTagMap::internal_clear()
 {
 	m_points.clear();
 	m_tags.clear();
+	m_beaconIds.clear();
 	m_tagsStale = false;
 }
 
@@ -55,6 +57,7 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 }
 
 // ---- serialization ---------------------------------------------------------
+// Version 3: as 2, with every likelihood option (tag poses too).
 // Version 2: the resolved detection settings (PipelineParams as the YAML of
 // `tagmap config --dump`, which names every key, so a later version with more
 // keys still reads it), likelihood and visual options, generic map params,
@@ -63,7 +66,7 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 // file path) instead of the settings.
 // Version 0 (tagmap 0.1): as 1, with the tags as a bare count and layout-0
 // tags (the layout tag_detection_archive.h took over).
-uint8_t CTagMap::serializeGetVersion() const { return 2; }
+uint8_t CTagMap::serializeGetVersion() const { return 3; }
 
 namespace
 {
@@ -97,7 +100,7 @@ PipelineParams resolveStoredChoices(const DetectionChoices& c)
 void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
 	out << paramsText(detectionParams);
-	out << likelihoodOptions.beaconRangesStd << likelihoodOptions.beaconRangesUseObservationStd;
+	writeLikelihoodOptions(out, likelihoodOptions);
 	out << visualOptions.showPoints << visualOptions.showLabels << visualOptions.showAxes << visualOptions.pointSize;
 	out << genericMapParams;
 	writeTagDetections(out, m_tags);
@@ -106,7 +109,7 @@ void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 
 void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-	if (version > 2) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+	if (version > 3) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
 	if (version >= 2)
 	{
 		std::string yaml;
@@ -119,7 +122,10 @@ void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 		in >> c.families >> c.tagSize >> c.configFile;
 		detectionParams = resolveStoredChoices(c);
 	}
-	in >> likelihoodOptions.beaconRangesStd >> likelihoodOptions.beaconRangesUseObservationStd;
+	likelihoodOptions = TTagLikelihoodOptions();
+	if (version >= 3) readLikelihoodOptions(in, likelihoodOptions);
+	else
+		in >> likelihoodOptions.beaconRangesStd >> likelihoodOptions.beaconRangesUseObservationStd;
 	in >> visualOptions.showPoints >> visualOptions.showLabels >> visualOptions.showAxes >> visualOptions.pointSize;
 	in >> genericMapParams;
 	if (version == 0)
@@ -131,6 +137,7 @@ void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 	}
 	else
 		m_tags = readTagDetections(in);
+	m_beaconIds.clear();
 	in >> m_points >> m_tagsStale;
 }
 

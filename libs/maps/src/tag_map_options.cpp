@@ -1,6 +1,7 @@
 #include "tagmap/maps/tag_map_options.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/serialization/CArchive.h>
 
 namespace tagmap::maps
 {
@@ -28,6 +29,26 @@ struct Saver
 	}
 };
 
+struct ArchiveWriter
+{
+	mrpt::serialization::CArchive& out;
+	template <class T>
+	void operator()(const char*, const T& v) const
+	{
+		out << v;
+	}
+};
+
+struct ArchiveReader
+{
+	mrpt::serialization::CArchive& in;
+	template <class T>
+	void operator()(const char*, T& v) const
+	{
+		in >> v;
+	}
+};
+
 template <class O, class F>
 void detectionFields(O& o, const F& f)
 {
@@ -41,6 +62,13 @@ void likelihoodFields(O& o, const F& f)
 {
 	f("beaconRangesStd", o.beaconRangesStd);
 	f("beaconRangesUseObservationStd", o.beaconRangesUseObservationStd);
+	f("tagPoseMinStdPosition", o.tagPoseMinStdPosition);
+	f("tagPoseMinStdRotationDeg", o.tagPoseMinStdRotationDeg);
+	f("mapTagStdPosition", o.mapTagStdPosition);
+	f("mapTagStdRotationDeg", o.mapTagStdRotationDeg);
+	f("tagPoseOutlierSigmas", o.tagPoseOutlierSigmas);
+	f("tagPoseExtraStdPosition", o.tagPoseExtraStdPosition);
+	f("tagPoseExtraStdRotationDeg", o.tagPoseExtraStdRotationDeg);
 }
 
 template <class O, class F>
@@ -78,6 +106,15 @@ void TTagLikelihoodOptions::loadFromConfigFile(const mrpt::config::CConfigFileBa
 void TTagLikelihoodOptions::saveToConfigFile(mrpt::config::CConfigFileBase& t, const std::string& sec) const
 {
 	likelihoodFields(*this, Saver{t, sec});
+}
+
+void writeLikelihoodOptions(mrpt::serialization::CArchive& out, const TTagLikelihoodOptions& o)
+{
+	likelihoodFields(o, ArchiveWriter{out});
+}
+void readLikelihoodOptions(mrpt::serialization::CArchive& in, TTagLikelihoodOptions& o)
+{
+	likelihoodFields(o, ArchiveReader{in});
 }
 
 void TTagVisualOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec)

@@ -1,14 +1,19 @@
 // Localizer (a): MRPT's own particle filter (mrpt::slam::
-// CMonteCarloLocalization2D) on the tag map as range-only beacons
-// (CLandmarksMap, one featBeacon per tag) with the CObservationBeaconRanges
-// of `tagmap observe`, from a uniform belief over the whole map.
+// CMonteCarloLocalization2D) on the tag map as a tagmap::maps::CTagMap in a
+// CMultiMetricMap, from a uniform belief over the whole map. The observation
+// model is CTagMap's: by default each scan's CObservationTagPoses (every seen
+// tag's 6-DoF pose against the mapped tag, CTagMap_likelihood.cpp); the
+// range-only CObservationBeaconRanges on request.
 //
-// Range-only global localization needs a broad likelihood while the belief
-// is spread (a 1-2 cm range std would leave almost no particle near the
-// truth) and a narrow one for tracking, so the range std is annealed: it
-// follows the particles' position spread between the global and tracking
-// values. Once position and heading spreads are small (converged), the
-// particle count drops to the tracking count.
+// Global localization needs a broad likelihood while the belief is spread
+// (a 1-2 cm / 0.1 deg model would leave no particle of a uniform start near
+// the truth) and a narrow one for tracking, so the model is annealed: tag
+// poses get the belief's position and heading spread added to their standard
+// deviations, in passes over the same scan that narrow with the belief
+// (annealed particle filtering) until it stops narrowing; ranges get a std
+// that follows the position spread between the global and tracking values. Once position and
+// heading spreads are small (converged), the particle count drops to the
+// tracking count.
 #pragma once
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -23,13 +28,33 @@
 
 namespace tagmap::localize
 {
+enum class PfObservations
+{
+	tagPoses,  // CObservationTagPoses: position and heading from every tag
+	ranges  // CObservationBeaconRanges only (what stock range-only filters use)
+};
+
 struct PfParams
 {
+	PfObservations observations = PfObservations::tagPoses;
 	size_t globalParticles = 40000;  // uniform start: enough that some lie near the truth
 	size_t trackingParticles = 3000;  // after the belief has converged
 	double mapMargin = 3.0;  // metres around the tags' bounding box for the uniform start
-	double globalRangeStd = 0.4;  // metres, likelihood while the belief is spread
-	double trackingRangeStd = 0.05;  // metres, once converged (>= detector range noise)
+	/** Tag poses: the most the belief's spread widens each tag's standard
+	 *  deviations before convergence (metres, degrees). A uniform start's
+	 *  spread is metres and radians; capped here, a few of 40 000 particles
+	 *  still lie within one such std of the truth (the caps were chosen so
+	 *  that they do on the demo site, 720 m^2). */
+	double globalPoseStdPosition = 0.5;
+	double globalPoseStdRotationDeg = 10;
+	/** Tag poses: at most this many annealing passes per scan (each shrinks
+	 *  the belief ~1/sqrt(2); 10 take a 0.5 m spread to ~1.5 cm), and the
+	 *  jitter between passes as a fraction of the belief's spread. */
+	int annealPasses = 20;
+	double annealJitter = 0.2;
+	double annealWidth = 2;
+	double globalRangeStd = 0.4;  // ranges: metres, likelihood while the belief is spread
+	double trackingRangeStd = 0.05;  // ranges: metres, once converged (>= detector range noise)
 	double convergedSpread = 0.3;  // metres: position std (largest axis) that counts as converged
 	double convergedHeadingDeg = 5;  // and heading std
 	uint32_t seed = 1;
@@ -37,6 +62,12 @@ struct PfParams
 	 *  are used, its stored model is not: how much to trust odometry is a
 	 *  filter setting). Must cover the real odometry error per step. */
 	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motionModel = defaultMotionModel();
+	/** No odometry (`tagmap localize --no-odometry`): every step is a zero
+	 *  increment, and the motion noise grows with the time since the previous
+	 *  step as if the robot moved at up to this speed and turn rate (1 sigma). */
+	bool noOdometry = false;
+	double noOdometrySpeed = 1.0;  // m/s: a walking-pace robot
+	double noOdometryTurnRateDeg = 30;  // deg/s
 
 	static mrpt::obs::CActionRobotMovement2D::TMotionModelOptions defaultMotionModel();
 };

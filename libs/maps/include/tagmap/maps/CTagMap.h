@@ -7,7 +7,9 @@
 //  - insertObservation(): LiDAR observations with intensity accumulate points;
 //    tags are detected on demand (tags()) by tagmap::Pipeline.
 //  - computeObservationLikelihood(): CObservationBeaconRanges against the tag
-//    centres, beacon IDs as in tagmap/mrpt/beacon_id.h (as CLandmarksMap does).
+//    centres, beacon IDs as in tagmap/mrpt/beacon_id.h (as CLandmarksMap does);
+//    CObservationTagPoses by each seen tag's 6-DoF pose against the mapped
+//    tag (robust Gaussian, CTagMap_likelihood.cpp).
 //  - getVisualizationInto(): tags with their real bitmaps, labels, axes, and
 //    optionally the points coloured by intensity.
 //  - asString(): a table family / id / size / position / roll-pitch-yaw.
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "tagmap/maps/tag_map_options.h"
+#include "tagmap/obs/CObservationTagPoses.h"
 #include "tagmap/pipeline_params.h"
 #include "tagmap/tag_detection.h"
 
@@ -73,6 +76,11 @@ class CTagMap : public mrpt::maps::CMetricMap
 	// Detection is lazy, so a const map can still bring its tags up to date.
 	mutable std::vector<TagDetection> m_tags;
 	mutable bool m_tagsStale = false;
+	// encodeBeaconId of each tag, for the range likelihood (a family lookup
+	// per tag, particle and range made the demo's range-only PF 4.6 s instead
+	// of 1.9 s). Cleared wherever m_tags is replaced; rebuilt on demand.
+	mutable std::vector<int64_t> m_beaconIds;
+	const std::vector<int64_t>& beaconIds() const;
 
 	void internal_clear() override;
 	bool internal_insertObservation(const mrpt::obs::CObservation& obs,
@@ -80,6 +88,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 	double internal_computeObservationLikelihood(const mrpt::obs::CObservation& obs,
 												 const mrpt::poses::CPose3D& takenFrom) const override;
 	bool internal_canComputeObservationLikelihood(const mrpt::obs::CObservation& obs) const override;
+	double tagPosesLogLikelihood(const obs::CObservationTagPoses& o, const mrpt::poses::CPose3D& robotPose) const;
 };
 
 }  // namespace tagmap::maps
