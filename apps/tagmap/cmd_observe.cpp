@@ -21,12 +21,15 @@ namespace
 {
 const char* kUsage =
 	"Usage: tagmap observe IN.rawlog OUT.rawlog [--family F] [--tag-size S] [--config FILE]\n"
-	"                      [--threads N] [--quiet]\n"
+	"                      [--window N] [--threads N] [--quiet]\n"
 	"Detects the tags in every LiDAR scan of IN (sensor frame) and writes OUT: IN with,\n"
 	"next to each scan, a CObservationBeaconRanges (range to each tag centre, beacon IDs\n"
 	"as in docs/MRPT.md) and a tagmap::obs::CObservationTagPoses (T_sensor_tag + 6x6\n"
 	"covariance; RawLogViewer -l build/lib/libtagmap_mrpt_plugin.so shows it).\n"
 	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md).\n"
+	"  --window N       detect on each scan merged with the N-1 scans before it, placed by the\n"
+	"                   rawlog's odometry (default 1: every scan alone). For short frames too\n"
+	"                   sparse to decode a tag (a 0.1 s Livox frame): e.g. 3-5 (docs/LOCALIZATION.md)\n"
 	"  --quiet          print nothing but errors (default: progress on stderr and a summary line)\n";
 
 }  // namespace
@@ -34,7 +37,7 @@ const char* kUsage =
 int runObserve(int argc, char** argv)
 {
 	return cli::runCommand("observe", [&] {
-		const cli::Args a = cli::parse(argc, argv, 1, pipelineOptions(), {"--help", "--quiet"});
+		const cli::Args a = cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window"}), {"--help", "--quiet"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage << pipelineOptionsHelp();
@@ -50,9 +53,14 @@ int runObserve(int argc, char** argv)
 		progress.update("reading", 0, 0);
 		const mrpt::obs::CRawlog log = io::loadRawlog(in);
 		progress.update("reading", log.size(), log.size());
+		localize::ObserveParams observeParams;
+		const long window = a.getInt("--window", 1);
+		// 100 frames of a 10 Hz sensor are 10 s: odometry drift no longer small.
+		if (window < 1 || window > 100) throw cli::UsageError("--window must be 1-100 scans");
+		observeParams.window = static_cast<size_t>(window);
 		localize::ObserveReport report;
 		const mrpt::obs::CRawlog observed = localize::observeRawlog(
-			log, Pipeline(params), {}, &report, [&](size_t done, size_t total) { progress.update("scans", done, total); });
+			log, Pipeline(params), observeParams, &report, [&](size_t done, size_t total) { progress.update("scans", done, total); });
 		if (report.scans == 0) throw InputError(in, "", "no LiDAR observation with intensity");
 		progress.update("writing", 0, 0);
 		io::saveRawlog(out, observed);

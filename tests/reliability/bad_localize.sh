@@ -86,6 +86,8 @@ CASE=observe-junk-input
 observe_rejects "ground_truth\.json: .*rawlog" "$MAP"
 CASE=observe-bad-threads
 observe_rejects "--threads" "$L/scans.rawlog" --threads 0
+CASE=observe-bad-window
+observe_rejects "--window must be 1-100" "$L/scans.rawlog" --window 0
 CASE=observe-bad-family
 observe_rejects "tag37h11" "$L/scans.rawlog" --family tag37h11
 CASE=observe-output-under-a-file

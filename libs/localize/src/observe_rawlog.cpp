@@ -3,7 +3,10 @@
 #include <mrpt/obs/CSensoryFrame.h>
 
 #include <chrono>
+#include <deque>
 
+#include "tagmap/errors.h"
+#include "tagmap/localize/rawlog_odometry.h"
 #include "tagmap/localize/rawlog_visit.h"
 #include "tagmap/localize/scan_tags.h"
 #include "tagmap/obs/CObservationTagPoses.h"
@@ -23,25 +26,35 @@ class Observer
 {
    public:
 	Observer(const Pipeline& pipeline, const ObserveParams& params, ObserveReport& report, size_t total,
-			 const CountProgressFn& progress)
-		: pipeline_(pipeline), params_(params), report_(report), total_(total), progress_(progress)
+			 OdometrySource odometry, const CountProgressFn& progress)
+		: pipeline_(pipeline),
+		  params_(params),
+		  report_(report),
+		  total_(total),
+		  odometry_(odometry),
+		  progress_(progress)
 	{
 	}
+
+	void addActions(const mrpt::obs::CActionCollection& a) { odometry_.addActions(a); }
 
 	/** The tag observations of one scan (empty if it is not a LiDAR scan). */
 	std::vector<mrpt::obs::CObservation::Ptr> observe(const mrpt::obs::CObservation& scanObs)
 	{
+		odometry_.addObservation(scanObs);
 		if (!isLidar(scanObs)) return {};
-		const auto scan = scanInSensorFrame(scanObs);
+		auto scan = scanInSensorFrame(scanObs);
 		if (!scan) return {};
 		mrpt::poses::CPose3D sensorPose;
 		scanObs.getSensorPose(sensorPose);
+		const mrpt::maps::CPointsMapXYZI merged = mergeWindow(std::move(*scan), sensorPose);
+		pointsDetected_ += merged.size();
 
 		auto tags = obs::CObservationTagPoses::Create();
 		tags->sensorLabel = scanObs.sensorLabel + params_.tagsLabelSuffix;
 		tags->timestamp = scanObs.timestamp;
 		tags->sensorPose = sensorPose;
-		tags->tags = detectTagsInScan(pipeline_, *scan);
+		tags->tags = detectTagsInScan(pipeline_, merged);
 
 		auto ranges = makeBeaconRanges(tags->tags, sensorPose, params_.ranges);
 		ranges->sensorLabel = scanObs.sensorLabel + params_.rangesLabelSuffix;
@@ -50,15 +63,37 @@ class Observer
 		report_.scans++;
 		report_.scansWithTags += !tags->tags.empty();
 		report_.tagsSeen += tags->tags.size();
+		report_.meanPointsDetected = pointsDetected_ / report_.scans;
 		if (progress_) progress_(report_.scans, total_);
 		return {ranges, tags};
 	}
 
    private:
+	struct PastScan
+	{
+		mrpt::poses::CPose3D sensorInOdometry;  // the sensor's pose in the odometry frame
+		mrpt::maps::CPointsMapXYZI points;  // in its sensor frame
+	};
+
+	/** This scan and the window's earlier ones, in this scan's sensor frame. */
+	mrpt::maps::CPointsMapXYZI mergeWindow(mrpt::maps::CPointsMapXYZI scan, const mrpt::poses::CPose3D& sensorPose)
+	{
+		if (params_.window <= 1) return scan;
+		const mrpt::poses::CPose3D sensorNow = mrpt::poses::CPose3D(odometry_.pose()) + sensorPose;
+		mrpt::maps::CPointsMapXYZI merged = scan;
+		for (const PastScan& past : window_) merged.insertAnotherMap(&past.points, past.sensorInOdometry - sensorNow);
+		window_.push_back({sensorNow, std::move(scan)});
+		if (window_.size() >= params_.window) window_.pop_front();
+		return merged;
+	}
+
 	const Pipeline& pipeline_;
 	const ObserveParams& params_;
 	ObserveReport& report_;
 	size_t total_;
+	OdometryIntegrator odometry_;
+	std::deque<PastScan> window_;  // the window - 1 scans before the next one
+	size_t pointsDetected_ = 0;
 	const CountProgressFn& progress_;
 };
 
@@ -76,9 +111,15 @@ mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& p
 {
 	const auto t0 = std::chrono::steady_clock::now();
 	ObserveReport report;
-	Observer observer(pipeline, params, report, countObservations(in), progress);
+	const OdometrySource odometry = findOdometry(in);
+	if (params.window > 1 && odometry == OdometrySource::none)
+		throw InputError("a window of " + std::to_string(params.window) +
+							 " scans needs odometry (CActionRobotMovement2D/3D or CObservationOdometry) to place "
+							 "them; the rawlog has none");
+	Observer observer(pipeline, params, report, countObservations(in), odometry, progress);
 	mrpt::obs::CRawlog out;
 	visitRawlog(in, {[&](const mrpt::obs::CActionCollection& a) {
+						 observer.addActions(a);
 						 mrpt::obs::CActionCollection copy = a;  // CRawlog::insert takes a non-const one
 						 out.insert(copy);
 					 },

@@ -18,6 +18,14 @@ struct ObserveParams
 	/** Label suffix of the added observations: "<scan label>_tags" and
 	 *  "<scan label>_ranges", so tools can pick them by label. */
 	std::string tagsLabelSuffix = "_tags", rangesLabelSuffix = "_ranges";
+	/** Scans merged before detecting: each scan with the window - 1 scans
+	 *  before it, moved into its sensor frame by the rawlog's odometry
+	 *  (rawlog_odometry.h). 1: every scan alone. A short Livox frame (0.1 s,
+	 *  ~10 k points) holds too few points on a tag 4-10 m away to decode;
+	 *  a window of a few frames fills it in, while the odometry's drift over
+	 *  that time (cm/m) stays below the tag's cell size. Without odometry
+	 *  in the rawlog a window > 1 is an error: the scans cannot be placed. */
+	size_t window = 1;
 };
 
 struct ObserveReport
@@ -25,6 +33,7 @@ struct ObserveReport
 	size_t scans = 0;  // LiDAR observations processed
 	size_t scansWithTags = 0;
 	size_t tagsSeen = 0;  // sum over scans
+	size_t meanPointsDetected = 0;  // points per detection (the window's scans merged)
 	double seconds = 0;
 };
 
