@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
+#include <vector>
 
 #include "cli.h"
 #include "commands.h"
@@ -18,6 +19,7 @@
 #include "tagmap/report/report_writer.h"
 #include "tagmap/tag_table.h"
 #include "tagmap/tags_json.h"
+#include "tagmap/verdict.h"
 
 namespace tagmap::app
 {
@@ -95,6 +97,13 @@ void printStages(const Detections& found)
 	std::fprintf(stderr, "%-20s %9.3f\n", "total", found.totalSeconds);
 	std::fprintf(stderr, "measured: point spacing %.1f mm, surface noise %.1f mm\n", 1000 * found.pointSpacing,
 				 1000 * found.surfaceNoise);
+	// What became of the clusters and windows: where the decode time went.
+	std::vector<size_t> count(kVerdicts.size(), 0);
+	for (const auto& c : found.candidates) count[static_cast<size_t>(c.verdict)]++;
+	std::fprintf(stderr, "verdicts:");
+	for (const VerdictInfo& v : kVerdicts)
+		if (count[static_cast<size_t>(v.verdict)]) std::fprintf(stderr, " %s %zu", v.name, count[static_cast<size_t>(v.verdict)]);
+	std::fprintf(stderr, "\n");
 }
 }  // namespace
 

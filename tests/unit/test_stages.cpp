@@ -1,3 +1,4 @@
+#include <algorithm>
 // One small synthetic input per pipeline stage (the end-to-end behaviour is
 // in test_pipeline.cpp and tests/e2e/).
 #include <gtest/gtest.h>
@@ -310,6 +311,24 @@ TEST(ReadEvidence, CleanStrongTagIsAcceptedOnAPlainWhiteWall)
 	EXPECT_EQ(e.bitErrors, 0);
 	EXPECT_EQ(e.codeBits, 36);
 	EXPECT_EQ(e.rejection, std::nullopt);
+}
+
+TEST(ReadEvidence, FamiliesNoReadCanPassAreNotDecoded)
+{
+	// Among every family, an exact read of a weak family (or tagCircle21h7:
+	// 38 codes of 21 bits) is still more likely by chance than its share of
+	// the budget: decoding it could only end in by_chance.
+	const std::vector<std::string> every = acceptableFamilies(parseFamilyList(""), 8, {});
+	for (const char* never : {"tag16h5", "tagCircle21h7", "aruco_4x4_50", "aruco_4x4_1000", "aruco_5x5_1000",
+							  "aruco_original"})
+		EXPECT_EQ(std::count(every.begin(), every.end(), never), 0) << never;
+	for (const char* kept : {"tag36h11", "tag25h9", "tagStandard41h12", "aruco_6x6_250", "aruco_7x7_1000"})
+		EXPECT_EQ(std::count(every.begin(), every.end(), kept), 1) << kept;
+	// Asked for alone with a larger budget, a weak family is decoded.
+	ReadEvidenceParams alone;
+	alone.chanceBudget = 0.01;
+	EXPECT_EQ(acceptableFamilies({"aruco_4x4_50"}, 8, alone), std::vector<std::string>{"aruco_4x4_50"});
+	EXPECT_TRUE(acceptableFamilies({"tag16h5"}, 8, {}).empty());
 }
 
 TEST(ReadEvidence, WeakFamilyIsChanceAmongEveryFamilyButNotAloneWithItsBudget)

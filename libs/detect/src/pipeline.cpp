@@ -233,7 +233,7 @@ class CandidateDecoder
 {
    public:
 	CandidateDecoder(const PipelineParams& p, const MapView& m, const OctreeGatherer& gatherer,
-					 const DerivedLengths& len, bool keepImages)
+					 const DerivedLengths& len, bool keepImages, bool anyFamilyDecoded)
 		: p_(p),
 		  m_(m),
 		  gatherer_(gatherer),
@@ -243,7 +243,8 @@ class CandidateDecoder
 		  // What a read is judged against (read_evidence.h): the families
 		  // searched and the orientations each quad was tried in.
 		  searched_(searchFamilies(p.families.empty() ? parseFamilyList("") : p.families)),
-		  readOrientations_(p.decoder.tryMirrored ? 8 : 4)
+		  readOrientations_(p.decoder.tryMirrored ? 8 : 4),
+		  anyFamilyDecoded_(anyFamilyDecoded)
 	{
 	}
 
@@ -252,6 +253,11 @@ class CandidateDecoder
 									 const SoftTagDecoder& soft) const
 	{
 		CandidateOutcome out{{}, std::move(rep)};
+		if (!anyFamilyDecoded_)
+		{
+			out.report.verdict = Verdict::NoFamilyCanPass;
+			return out;
+		}
 		const std::vector<uint32_t> pts = gatherer_.gather(box, len_.spacing, m_.xs, m_.ys, m_.zs);
 		out.report.gatheredPoints = pts.size();
 		const PlaneImage plane = renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane);
@@ -371,6 +377,7 @@ class CandidateDecoder
 	const CandidateFilterParams sizes_;
 	const std::vector<std::string> searched_;
 	const int readOrientations_;
+	const bool anyFamilyDecoded_;
 };
 
 // Gather, render, decode, solve: independent per candidate, on each
@@ -407,18 +414,23 @@ Decoder& perWorker(std::vector<std::unique_ptr<Decoder>>& pool, std::mutex& mute
 {
 	std::lock_guard<std::mutex> lock(mutex);
 	if (pool.size() <= worker) pool.resize(worker + 1);
-	if (!pool[worker]) pool[worker] = std::make_unique<Decoder>(families.empty() ? parseFamilyList("") : families, params);
+	if (!pool[worker]) pool[worker] = std::make_unique<Decoder>(families, params);
 	return *pool[worker];
 }
 
 }  // namespace
 
-Pipeline::Pipeline(PipelineParams params) : params_(std::move(params)) { params_.validate(); }
+Pipeline::Pipeline(PipelineParams params) : params_(std::move(params))
+{
+	params_.validate();
+	decodedFamilies_ = acceptableFamilies(params_.families.empty() ? parseFamilyList("") : params_.families,
+										  params_.decoder.tryMirrored ? 8 : 4, params_.evidence);
+}
 
 Pipeline::WorkerDecoders Pipeline::decodersFor(unsigned worker) const
 {
-	return {perWorker(decoders_, decodersMutex_, worker, params_.families, params_.decoder),
-			perWorker(softDecoders_, decodersMutex_, worker, params_.families, params_.softDecoder)};
+	return {perWorker(decoders_, decodersMutex_, worker, decodedFamilies_, params_.decoder),
+			perWorker(softDecoders_, decodersMutex_, worker, decodedFamilies_, params_.softDecoder)};
 }
 
 Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress, bool keepImages) const
@@ -458,7 +470,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	const auto gatherer = stage.run("octree", grid.voxelCount(), [&] {
 		return std::make_unique<const OctreeGatherer>(grid, len.octreeLeaf, params_.gather, threads);
 	});
-	const CandidateDecoder decoder(params_, m, *gatherer, len, keepImages);
+	const CandidateDecoder decoder(params_, m, *gatherer, len, keepImages, !decodedFamilies_.empty());
 	std::vector<TagDetection> found = stage.run("decode", candidates.size(), [&](const CountProgressFn& count) {
 		return decodeCandidates(decoder, candidates, out.candidates, threads, count,
 								[this](unsigned worker) { return decodersFor(worker); });

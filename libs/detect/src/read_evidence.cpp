@@ -45,7 +45,33 @@ const CellRoles& rolesOf(const std::string& family)
 	}
 	return *slot;
 }
+// The codes a read of `family` competes with: a nested ArUco read counts
+// the codes of the largest dictionary searched.
+int codesJudged(const std::string& family, const std::vector<std::string>& searched)
+{
+	int codes = findFamily(family)->idCount;
+	for (const std::string& f : searched)
+		if (sameMarker(f, 0, family, 0)) codes = std::max(codes, findFamily(f)->idCount);
+	return codes;
+}
+
+double budgetPerFamily(const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	return p.chanceBudget / static_cast<double>(std::max<size_t>(searched.size(), 1));
+}
 }  // namespace
+
+std::vector<std::string> acceptableFamilies(const std::vector<std::string>& requested, int orientations,
+											const ReadEvidenceParams& p)
+{
+	const std::vector<std::string> searched = searchFamilies(requested);
+	std::vector<std::string> out;
+	for (const std::string& f : requested)
+		if (chanceMatchProbability(codesJudged(f, searched), rolesOf(f).codeBits, 0, orientations) <=
+			budgetPerFamily(searched, p))
+			out.push_back(f);
+	return out;
+}
 
 double chanceMatchProbability(int codes, int n, int wrong, int orientations)
 {
@@ -92,9 +118,7 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 			default: e.quietCells++, e.quietErrors += !readWhite; break;
 		}
 	}
-	int codes = info->idCount;
-	for (const std::string& f : searched)
-		if (sameMarker(f, 0, read.family, 0)) codes = std::max(codes, findFamily(f)->idCount);
+	const int codes = codesJudged(read.family, searched);
 	// A bit decoder's own count is the better one where it has it: it reads
 	// each cell from the edges it found, our samples from the cell middles.
 	// Erased cells match anything: only the others can tell a code from chance.
@@ -106,7 +130,7 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 		e.bitErrors = read.hamming, e.erasures = 0;
 		e.chance = chanceMatchProbability(codes, e.codeBits, read.hamming, orientations);
 	}
-	if (e.chance > p.chanceBudget / static_cast<double>(std::max<size_t>(searched.size(), 1))) return e;
+	if (e.chance > budgetPerFamily(searched, p)) return e;
 	e.rejection = Verdict::NoBorder;
 	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells) return e;
 	e.rejection = Verdict::NoQuietZone;

@@ -117,7 +117,42 @@ struct TagDecoder::Impl
 			}
 	}
 
-	void decodeAprilTags(const cv::Mat& img, bool mirrored, std::vector<DecodedTag2D>& out) const
+	/** A family read in the mirror: the same codes and decode table, each
+	 *  bit sampled at its mirror position across the tag's vertical axis. */
+	struct MirroredFamily
+	{
+		apriltag_family_t family{};
+		std::vector<uint32_t> bitX, bitY;
+	};
+	std::vector<std::unique_ptr<MirroredFamily>> mirrored;
+
+	/** `plain` as read in the mirror, added to the detector. libapriltag
+	 *  then finds the image's quads once and decodes each as read and
+	 *  mirrored: decoding the flipped image repeated the thresholding,
+	 *  segmentation and quad fitting, half of its time. */
+	void addMirrored(const apriltag_family_t& plain, int bitsCorrected)
+	{
+		auto m = std::make_unique<MirroredFamily>();
+		m->family = plain;  // codes, name and the shared decode table (impl) are the plain family's
+		for (uint32_t k = 0; k < plain.nbits; k++)
+		{
+			// Bit cells are numbered 0 .. width_at_border-1 across the border
+			// (outside it, reversed-border families, as wrapped negatives).
+			m->bitX.push_back(static_cast<uint32_t>(plain.width_at_border - 1 - static_cast<int32_t>(plain.bit_x[k])));
+			m->bitY.push_back(plain.bit_y[k]);
+		}
+		m->family.bit_x = m->bitX.data();
+		m->family.bit_y = m->bitY.data();
+		apriltag_detector_add_family_bits(detector, &m->family, bitsCorrected);  // impl set: builds no table
+		mirrored.push_back(std::move(m));
+	}
+
+	bool isMirrored(const apriltag_family_t* f) const
+	{
+		return std::any_of(mirrored.begin(), mirrored.end(), [f](const auto& m) { return &m->family == f; });
+	}
+
+	void decodeAprilTags(const cv::Mat& img, std::vector<DecodedTag2D>& out) const
 	{
 		image_u8_t im{img.cols, img.rows, static_cast<int32_t>(img.step), const_cast<uint8_t*>(img.data)};
 		zarray_t* dets = apriltag_detector_detect(detector, &im);
@@ -131,9 +166,22 @@ struct TagDecoder::Impl
 			d.id = det->id;
 			d.margin = det->decision_margin;
 			d.hamming = det->hamming;
-			d.mirrored = mirrored;
+			d.mirrored = isMirrored(det->family);
 			// libapriltag wraps p[] counter-clockwise from bottom-left.
 			for (int k = 0; k < 4; k++) d.corners[k] = Eigen::Vector2d(det->p[3 - k][0], det->p[3 - k][1]);
+			if (d.mirrored)
+			{
+				// libapriltag turns the corners by the rotation it decoded in,
+				// one way; mirrored bits turn the other, so its order is right
+				// only up to a half turn: the bitmap itself picks the order.
+				const TagBitmap bm = renderTagBitmap(d.family, d.id);
+				const std::vector<float> sample =
+					sampleCells(img, d.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+				if (sample.empty()) continue;
+				double mean = 0;
+				for (float v : sample) mean += v / static_cast<double>(sample.size());
+				d.corners = orderedCorners(d.corners, bestOrder(d.family, d.id, sample, static_cast<float>(mean), true));
+			}
 			out.push_back(d);
 		}
 		apriltag_detections_destroy(dets);
@@ -162,6 +210,7 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 			const int bits = info->weak() ? 0 : affordableBitsCorrected(name, params.maxBitsCorrected);
 			impl_->aprilFamilies.push_back(sharedAprilTagFamily(name, bits));
 			apriltag_detector_add_family_bits(impl_->detector, impl_->aprilFamilies.back().get(), bits);
+			if (params.tryMirrored) impl_->addMirrored(*impl_->aprilFamilies.back(), bits);
 		}
 		else
 		{
@@ -183,22 +232,7 @@ std::vector<DecodedTag2D> TagDecoder::decode(const cv::Mat& gray8, const std::ve
 {
 	CV_Assert(gray8.type() == CV_8UC1 && gray8.isContinuous());
 	std::vector<DecodedTag2D> out;
-	if (impl_->detector)
-	{
-		impl_->decodeAprilTags(gray8, false, out);
-		if (impl_->params.tryMirrored)
-		{
-			cv::Mat flipped;
-			cv::flip(gray8, flipped, 1);
-			std::vector<DecodedTag2D> mirroredFound;
-			impl_->decodeAprilTags(flipped, true, mirroredFound);
-			for (auto& d : mirroredFound)
-			{
-				for (auto& c : d.corners) c.x() = gray8.cols - c.x();
-				out.push_back(d);
-			}
-		}
-	}
+	if (impl_->detector) impl_->decodeAprilTags(gray8, out);
 	if (!impl_->aruco.empty())
 		impl_->decodeAruco(gray8, quads ? *quads : findTagQuads(gray8, impl_->params.maxQuads), out);
 	dropRepeatedReads(out);

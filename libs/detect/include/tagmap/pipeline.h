@@ -74,6 +74,9 @@ class Pipeline
 
    private:
 	PipelineParams params_;
+	// The families decoded: those asked for (all when none) in which a read
+	// can pass the chance budget at all (read_evidence.h: acceptableFamilies).
+	std::vector<std::string> decodedFamilies_;
 	// Decoders are costly to build (libapriltag's decode tables): one per
 	// worker thread, made on first use and kept for the next detect().
 	mutable std::vector<std::unique_ptr<TagDecoder>> decoders_;

@@ -1,7 +1,9 @@
 // Stage 5: decoding an intensity image with the real fiducial decoders,
 // as rendered and mirrored: the box a candidate was rendered from has no
 // preferred side, so the tag may be seen from "behind".
-//  - AprilTag families: libapriltag on the image and on its mirror image.
+//  - AprilTag families: libapriltag, each family also read in the mirror
+//    (its bits sampled at their mirror positions, the same codes and decode
+//    table), so the image's quads are found once for both sides.
 //  - ArUco dictionaries: OpenCV's Dictionary::identify on the bits sampled
 //    inside each tag-shaped quad (tag_quads.h), and on their mirror image.
 //    The quads are found once per image: running cv::aruco::detectMarkers

@@ -18,6 +18,7 @@ enum class Verdict
 	NotFlat,
 	NotPlanar,
 	NoDecode,
+	NoFamilyCanPass,
 	ByChance,
 	NoBorder,
 	NoQuietZone,
@@ -41,6 +42,9 @@ inline constexpr std::array<VerdictInfo, 13> kVerdicts = {{
 	{Verdict::NotFlat, "not_flat", "box too thick for a printed tag (candidates.max_flatness)"},
 	{Verdict::NotPlanar, "not_planar", "the gathered points do not fit one plane"},
 	{Verdict::NoDecode, "no_decode", "no decoder read a tag of the requested families on the image"},
+	{Verdict::NoFamilyCanPass, "no_family_can_pass",
+	 "not decoded: no family asked for could pass the chance budget even read exactly (weak families searched "
+	 "with others; evidence.chance_budget)"},
 	{Verdict::ByChance, "by_chance",
 	 "a code was read, but a random pattern would match some code that well too often (evidence.chance_budget)"},
 	{Verdict::NoBorder, "no_border",
