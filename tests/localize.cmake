@@ -13,7 +13,7 @@ set_tests_properties(localize_e2e PROPERTIES TIMEOUT 300)
 
 # Stock MRPT pf-localization on the same outputs, the plugin preloaded so the
 # ini's tagMap scores the tag poses (docs/MRPT.md, "pf-localization with the
-# tag poses"): converged by step 10, then <= 2 cm / 0.2 deg RMSE.
+# tag poses"): converged by step 5, then <= 1.5 cm / 0.1 deg RMSE.
 set_tests_properties(localize_e2e PROPERTIES FIXTURES_SETUP localize_outputs)
 add_test(NAME mrpt_pf_localization_tags
   COMMAND bash ${PROJECT_SOURCE_DIR}/tests/mrpt/pf_localization_tags.sh ${PROJECT_BINARY_DIR}/test-artifacts/localize

@@ -27,8 +27,8 @@ struct MetricMapIniParams
 	 *  model must be wide enough for its nearest particles (tagmap localize
 	 *  anneals instead). Measured with stock pf-localization on the quick
 	 *  localize demo: docs/MRPT.md. */
-	double tagPoseExtraStdPosition = 0.3;
-	double tagPoseExtraStdRotationDeg = 5;
+	double tagPoseExtraStdPosition = 0.1;
+	double tagPoseExtraStdRotationDeg = 2;
 	/** Extra keys for the tagMap's "_detectionOpts" section (the plugin's
 	 *  detection parameters), written verbatim as key=value. */
 	std::vector<std::pair<std::string, std::string>> tagMapDetectionOptions;
