@@ -10,3 +10,12 @@ add_test(NAME localize_e2e
   COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/localize-demo.sh --quick --check
           --tagmap $<TARGET_FILE:tagmap> --out ${PROJECT_BINARY_DIR}/test-artifacts/localize)
 set_tests_properties(localize_e2e PROPERTIES TIMEOUT 300)
+
+# Stock MRPT pf-localization on the same outputs, the plugin preloaded so the
+# ini's tagMap scores the tag poses (docs/MRPT.md, "pf-localization with the
+# tag poses"): converged by step 5, then <= 1.5 cm / 0.1 deg RMSE.
+set_tests_properties(localize_e2e PROPERTIES FIXTURES_SETUP localize_outputs)
+add_test(NAME mrpt_pf_localization_tags
+  COMMAND bash ${PROJECT_SOURCE_DIR}/tests/mrpt/pf_localization_tags.sh ${PROJECT_BINARY_DIR}/test-artifacts/localize
+          $<TARGET_FILE:tagmap_mrpt_plugin>)
+set_tests_properties(mrpt_pf_localization_tags PROPERTIES FIXTURES_REQUIRED localize_outputs TIMEOUT 300)

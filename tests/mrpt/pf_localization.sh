@@ -8,6 +8,9 @@
 # KEY=VALUE replacing its line, followed by PREFIX.ini unchanged.
 # Without PREFIX...: the fixture, make_fixture.cpp (map.ini, beacons.rawlog
 # ending at x=3.4, y=0.45, starting near the origin).
+# The app runs stock (the tagMap of PREFIX.ini is then ignored), or with
+# PF_LOCALIZATION_PRELOAD=PLUGIN.so in the environment with the plugin
+# preloaded, so the tagMap loads and scores the tag poses (docs/MRPT.md).
 set -euo pipefail
 if [ $# -le 2 ]; then
   set -- "$@" map beacons.rawlog 3.4 0.45 init_PDF_min_x=-1 init_PDF_max_x=3 init_PDF_min_y=-2 init_PDF_max_y=1 \
@@ -27,7 +30,7 @@ done
 cat "$prefix.ini" >>"$run"
 out=$(sed -n 's/^logOutput_dir=//p' "$run")
 rm -rf "${out}"_*
-pf-localization "$run" "$beacons" </dev/null >"$log" 2>&1 || {
+LD_PRELOAD=${PF_LOCALIZATION_PRELOAD:-} pf-localization "$run" "$beacons" </dev/null >"$log" 2>&1 || {
   echo "FAIL: pf-localization exited non-zero"; tail -40 "$log"; exit 1; }
 if grep -q "MRPT exception" "$log"; then tail -40 "$log"; exit 1; fi
 out=$(ls -d "${out}"_*/ | head -1)

@@ -40,7 +40,10 @@ TEST(MrptIni, ParsedByCMultiMetricMap)
 
 	auto tm = mm.mapByClass<maps::CTagMap>();
 	ASSERT_TRUE(tm);
-	EXPECT_FALSE(tm->genericMapParams.enableObservationLikelihood);  // the landmarksMap scores ranges
+	EXPECT_TRUE(tm->genericMapParams.enableObservationLikelihood);  // the tag poses
+	EXPECT_FALSE(tm->likelihoodOptions.scoreBeaconRanges);  // the landmarksMap scores ranges
+	EXPECT_EQ(tm->likelihoodOptions.tagPoseExtraStdPosition, 0.1);
+	EXPECT_EQ(tm->likelihoodOptions.tagPoseExtraStdRotationDeg, 2);
 	EXPECT_EQ(tm->detectionParams.families, std::vector<std::string>{"tag36h11"});
 	EXPECT_EQ(tm->detectionParams.tagSize, 0.5);
 	ASSERT_EQ(tm->tags().size(), tags.size());

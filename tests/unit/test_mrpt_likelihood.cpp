@@ -63,6 +63,18 @@ TEST(MrptLikelihood, MatchesCLandmarksMap)
 	EXPECT_NEAR(m.computeObservationLikelihood(obs, probe), lm.computeObservationLikelihood(obs, probe), 1e-3);
 }
 
+TEST(MrptLikelihood, RangesLeftToTheLandmarksMapWhenNotScored)
+{
+	// The --ini's tagMap (scoreBeaconRanges=false): ranges give log(1)
+	// everywhere, so a CMultiMetricMap with the landmarksMap counts them once.
+	const auto tags = mrpt_test::syntheticTags();
+	maps::CTagMap m;
+	m.setTags(tags);
+	m.likelihoodOptions.scoreBeaconRanges = false;
+	const auto obs = rangesFrom(mrpt::poses::CPose3D(1, 0, 0, 0, 0, 0), tags);
+	EXPECT_EQ(m.computeObservationLikelihood(obs, mrpt::poses::CPose3D(1.4, -0.3, 0, 0.1, 0, 0)), 0.0);
+}
+
 TEST(MrptLikelihood, UnknownBeaconIsUniform)
 {
 	maps::CTagMap m;

@@ -48,6 +48,7 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	m.likelihoodOptions.beaconRangesStd = 0.123;
 	m.likelihoodOptions.tagPoseOutlierSigmas = 3.5;
 	m.likelihoodOptions.mapTagStdRotationDeg = 0.7;
+	m.likelihoodOptions.scoreBeaconRanges = false;
 	m.visualOptions.showPoints = false;
 	m.setPoints(mrpt_test::syntheticWallMap(tags));
 	m.setTags(tags);
@@ -68,6 +69,7 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	EXPECT_EQ(back->likelihoodOptions.beaconRangesStd, 0.123);
 	EXPECT_EQ(back->likelihoodOptions.tagPoseOutlierSigmas, 3.5);
 	EXPECT_EQ(back->likelihoodOptions.mapTagStdRotationDeg, 0.7);
+	EXPECT_FALSE(back->likelihoodOptions.scoreBeaconRanges);
 	EXPECT_FALSE(back->visualOptions.showPoints);
 }
 

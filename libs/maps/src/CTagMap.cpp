@@ -57,6 +57,7 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 }
 
 // ---- serialization ---------------------------------------------------------
+// Version 4: as 3, with the likelihood option scoreBeaconRanges.
 // Version 3: as 2, with every likelihood option (tag poses too).
 // Version 2: the resolved detection settings (PipelineParams as the YAML of
 // `tagmap config --dump`, which names every key, so a later version with more
@@ -66,7 +67,7 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 // file path) instead of the settings.
 // Version 0 (tagmap 0.1): as 1, with the tags as a bare count and layout-0
 // tags (the layout tag_detection_archive.h took over).
-uint8_t CTagMap::serializeGetVersion() const { return 3; }
+uint8_t CTagMap::serializeGetVersion() const { return 4; }
 
 namespace
 {
@@ -109,7 +110,7 @@ void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 
 void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-	if (version > 3) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+	if (version > 4) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
 	if (version >= 2)
 	{
 		std::string yaml;
@@ -123,7 +124,9 @@ void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 		detectionParams = resolveStoredChoices(c);
 	}
 	likelihoodOptions = TTagLikelihoodOptions();
-	if (version >= 3) readLikelihoodOptions(in, likelihoodOptions);
+	if (version >= 3)
+		readLikelihoodOptions(in, likelihoodOptions,
+							  version == 3 ? LikelihoodOptionsLayout::v3 : LikelihoodOptionsLayout::current);
 	else
 		in >> likelihoodOptions.beaconRangesStd >> likelihoodOptions.beaconRangesUseObservationStd;
 	in >> visualOptions.showPoints >> visualOptions.showLabels >> visualOptions.showAxes >> visualOptions.pointSize;

@@ -87,7 +87,7 @@ double CTagMap::internal_computeObservationLikelihood(const mrpt::obs::CObservat
 	if (const auto* poses = dynamic_cast<const tagmap::obs::CObservationTagPoses*>(&obs))
 		return tagPosesLogLikelihood(*poses, robotPose);
 	const auto* o = dynamic_cast<const mrpt::obs::CObservationBeaconRanges*>(&obs);
-	if (!o) return 0;  // log(1): no information
+	if (!o || !likelihoodOptions.scoreBeaconRanges) return 0;  // log(1): no information
 
 	const double sensorStd = likelihoodOptions.beaconRangesUseObservationStd ? o->stdError
 																			 : likelihoodOptions.beaconRangesStd;

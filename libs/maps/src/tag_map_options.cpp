@@ -3,6 +3,8 @@
 #include <mrpt/config/CConfigFileBase.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <string>
+
 namespace tagmap::maps
 {
 namespace
@@ -42,10 +44,13 @@ struct ArchiveWriter
 struct ArchiveReader
 {
 	mrpt::serialization::CArchive& in;
+	const char* firstMissing = nullptr;  // this field and those after it are not stored
+	mutable bool missing = false;
 	template <class T>
-	void operator()(const char*, T& v) const
+	void operator()(const char* k, T& v) const
 	{
-		in >> v;
+		missing = missing || (firstMissing && std::string(k) == firstMissing);
+		if (!missing) in >> v;
 	}
 };
 
@@ -69,6 +74,7 @@ void likelihoodFields(O& o, const F& f)
 	f("tagPoseOutlierSigmas", o.tagPoseOutlierSigmas);
 	f("tagPoseExtraStdPosition", o.tagPoseExtraStdPosition);
 	f("tagPoseExtraStdRotationDeg", o.tagPoseExtraStdRotationDeg);
+	f("scoreBeaconRanges", o.scoreBeaconRanges);  // new in CTagMap version 4: keep it last
 }
 
 template <class O, class F>
@@ -112,9 +118,9 @@ void writeLikelihoodOptions(mrpt::serialization::CArchive& out, const TTagLikeli
 {
 	likelihoodFields(o, ArchiveWriter{out});
 }
-void readLikelihoodOptions(mrpt::serialization::CArchive& in, TTagLikelihoodOptions& o)
+void readLikelihoodOptions(mrpt::serialization::CArchive& in, TTagLikelihoodOptions& o, LikelihoodOptionsLayout stored)
 {
-	likelihoodFields(o, ArchiveReader{in});
+	likelihoodFields(o, ArchiveReader{in, stored == LikelihoodOptionsLayout::v3 ? "scoreBeaconRanges" : nullptr});
 }
 
 void TTagVisualOptions::loadFromConfigFile(const mrpt::config::CConfigFileBase& s, const std::string& sec)

@@ -14,7 +14,8 @@ std::string metricMapIni(const std::vector<TagDetection>& tags, const MetricMapI
 {
 	const std::string& S = params.sectionName;
 	std::ostringstream o;
-	o << "; Written by tagmap: " << tags.size() << " fiducial tags as range-only beacons.\n"
+	o << "; Written by tagmap: " << tags.size() << " fiducial tags as range-only beacons"
+	  << (params.includeTagMap ? " (landmarksMap) and as tags (tagMap, with the tagmap plugin).\n" : ".\n")
 	  << "; Beacon ID = familyIndex * " << kBeaconIdStride << " + tag id (docs/MRPT.md),\n"
 	  << "; e.g. " << encodeBeaconId("tag36h11", 3) << " = tag36h11 #3.\n"
 	  << "[" << S << "]\n"
@@ -38,15 +39,20 @@ std::string metricMapIni(const std::vector<TagDetection>& tags, const MetricMapI
 
 	if (params.includeTagMap)
 	{
-		// The landmarksMap already scores beacon ranges; letting the tagMap
-		// score them too would count every range twice.
+		// The tagMap scores the tag poses; the landmarksMap already scores
+		// the beacon ranges, so the tagMap leaves them (scoreBeaconRanges):
+		// both would count every range twice.
 		o << "\n[" << S << "_tagMap_00_creationOpts]\n"
-		  << "enableObservationLikelihood=false\n";
+		  << "enableObservationLikelihood=true\n";
 		writeTagsIniKeys(o, tags);
 		o << "\n[" << S << "_tagMap_00_detectionOpts]\n";
 		for (const auto& [k, v] : params.tagMapDetectionOptions) o << k << "=" << v << "\n";
 		o << "\n[" << S << "_tagMap_00_likelihoodOpts]\n"
-		  << mrpt::format("beaconRangesStd=%g\n", params.beaconRangesStd);
+		  << "scoreBeaconRanges=false  ; the landmarksMap scores them\n"
+		  << "; Added to each seen tag's std: one update per scan from a uniform start\n"
+		  << "; needs a model as wide as the particles are apart (docs/MRPT.md).\n"
+		  << mrpt::format("tagPoseExtraStdPosition=%g\n", params.tagPoseExtraStdPosition)
+		  << mrpt::format("tagPoseExtraStdRotationDeg=%g\n", params.tagPoseExtraStdRotationDeg);
 	}
 	return o.str();
 }

@@ -26,16 +26,21 @@ mrpt::poses::CPose2D planar(const Eigen::Isometry3d& T)
 
 mrpt::obs::CActionRobotMovement2D::TMotionModelOptions RawlogOptions::defaultMotionModel()
 {
-	// Thrun's model: noise grows with the distance and turn of each step, as
-	// the simulator's drift does (per sqrt metre, per sqrt second).
+	// A Gaussian model whose std grows with each step's distance and turn, as
+	// the simulator's drift does. Not Thrun's: MRPT 2.5.8 stores a Thrun-model
+	// action as a set of samples, and its particle filters' standard proposal
+	// then gives every particle the same increment (stock pf-localization on
+	// such a rawlog: particle spread 1e-11 after the first step, then dead
+	// reckoning; docs/MRPT.md). tagmap localize re-derives its own action.
 	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m;
-	m.modelSelection = mrpt::obs::CActionRobotMovement2D::mmThrun;
-	m.thrunModel.alfa1_rot_rot = 0.05f;
-	m.thrunModel.alfa2_rot_trans = static_cast<float>(mrpt::DEG2RAD(2.0));
-	m.thrunModel.alfa3_trans_trans = 0.05f;
-	m.thrunModel.alfa4_trans_rot = 0.001f;
-	m.thrunModel.additional_std_XY = 0.01f;
-	m.thrunModel.additional_std_phi = static_cast<float>(mrpt::DEG2RAD(0.3));
+	m.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
+	// Units as MRPT's own defaults write them (a2, a3 per radian / in radians).
+	m.gaussianModel.a1 = 0.05;  // translation std per metre travelled
+	m.gaussianModel.a2 = mrpt::RAD2DEG(0.001);  // translation std per turn
+	m.gaussianModel.a3 = mrpt::DEG2RAD(2.0);  // heading std per metre travelled
+	m.gaussianModel.a4 = 0.05;  // heading std per turn
+	m.gaussianModel.minStdXY = 0.01;
+	m.gaussianModel.minStdPHI = mrpt::DEG2RAD(0.3);
 	return m;
 }
 

@@ -37,6 +37,11 @@ struct TTagLikelihoodOptions : public mrpt::config::CLoadableOptions
 {
 	double beaconRangesStd = 0.08;  // metres
 	bool beaconRangesUseObservationStd = false;  // use each observation's stdError instead
+	/** false: CObservationBeaconRanges give no information (log 1). For a
+	 *  [MetricMap] that also holds a landmarksMap of the same tags (the ini of
+	 *  `tagmap detect --ini`), which scores the ranges already: with both, a
+	 *  CMultiMetricMap would count every range twice. */
+	bool scoreBeaconRanges = true;
 
 	/** Floors on a seen tag's standard deviations (metres, degrees): a
 	 *  covariance from few points can be overconfident, and a zero one would
@@ -68,7 +73,11 @@ struct TTagLikelihoodOptions : public mrpt::config::CLoadableOptions
 
 /** Every field in the order of the ini keys (CTagMap serialization). */
 void writeLikelihoodOptions(mrpt::serialization::CArchive& out, const TTagLikelihoodOptions& o);
-void readLikelihoodOptions(mrpt::serialization::CArchive& in, TTagLikelihoodOptions& o);
+/** `stored`: the archive's fields, a prefix of the current ones (CTagMap
+ *  version 3 has all but scoreBeaconRanges); the rest keep their defaults. */
+enum class LikelihoodOptionsLayout { v3, current };
+void readLikelihoodOptions(mrpt::serialization::CArchive& in, TTagLikelihoodOptions& o,
+						   LikelihoodOptionsLayout stored = LikelihoodOptionsLayout::current);
 
 /** What getVisualizationInto() draws (section "<prefix>_visualOpts"). */
 struct TTagVisualOptions : public mrpt::config::CLoadableOptions
