@@ -227,6 +227,15 @@ struct CandidateOutcome
 	CandidateReport report;
 };
 
+// The families a detection searches (all of them when none are named).
+std::vector<std::string> familiesAsked(const PipelineParams& p)
+{
+	return p.families.empty() ? parseFamilyList("") : p.families;
+}
+
+// The orientations each quad is read in: 4 rotations, each also mirrored.
+int readOrientations(const PipelineParams& p) { return p.decoder.tryMirrored ? 8 : 4; }
+
 // Stages 4-6 for one candidate at a time: gather, render, decode, verify,
 // pose. Fixed for the whole map, shared by the worker threads.
 class CandidateDecoder
@@ -242,8 +251,8 @@ class CandidateDecoder
 		  sizes_(filterParams(p)),
 		  // What a read is judged against (read_evidence.h): the families
 		  // searched and the orientations each quad was tried in.
-		  searched_(searchFamilies(p.families.empty() ? parseFamilyList("") : p.families)),
-		  readOrientations_(p.decoder.tryMirrored ? 8 : 4),
+		  searched_(searchFamilies(familiesAsked(p))),
+		  readOrientations_(readOrientations(p)),
 		  anyFamilyDecoded_(anyFamilyDecoded)
 	{
 	}
@@ -423,8 +432,7 @@ Decoder& perWorker(std::vector<std::unique_ptr<Decoder>>& pool, std::mutex& mute
 Pipeline::Pipeline(PipelineParams params) : params_(std::move(params))
 {
 	params_.validate();
-	decodedFamilies_ = acceptableFamilies(params_.families.empty() ? parseFamilyList("") : params_.families,
-										  params_.decoder.tryMirrored ? 8 : 4, params_.evidence);
+	decodedFamilies_ = acceptableFamilies(familiesAsked(params_), readOrientations(params_), params_.evidence);
 }
 
 Pipeline::WorkerDecoders Pipeline::decodersFor(unsigned worker) const

@@ -1,11 +1,6 @@
 #include "tagmap/localize/localization_steps.h"
 
-#include <mrpt/obs/CActionRobotMovement2D.h>
-#include <mrpt/obs/CActionRobotMovement3D.h>
-#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CSensoryFrame.h>
-
-#include <optional>
 
 #include "tagmap/errors.h"
 #include "tagmap/localize/rawlog_odometry.h"

@@ -37,6 +37,19 @@ Bounds mapBounds(const std::vector<TagDetection>& tags, double margin)
 	return b;
 }
 
+/** One 2D movement action: `odometry` under the motion `model`. */
+mrpt::obs::CActionCollection movementAction(const mrpt::poses::CPose2D& odometry,
+											const mrpt::obs::CActionRobotMovement2D::TMotionModelOptions& model,
+											mrpt::Clock::time_point stamp = {})
+{
+	mrpt::obs::CActionRobotMovement2D move;
+	move.timestamp = stamp;
+	move.computeFromOdometry(odometry, model);
+	mrpt::obs::CActionCollection actions;
+	actions.insert(move);
+	return actions;
+}
+
 /** The step's odometry under the filter's motion model (a zero increment
  *  when the robot did not move: the PF needs an action). Without odometry,
  *  a zero increment with noise for `dt` seconds of unknown motion. */
@@ -51,12 +64,7 @@ mrpt::obs::CActionCollection actionsOf(const LocalizationStep& s, double dt, con
 		g.minStdXY = std::max<double>(g.minStdXY, params.noOdometrySpeed * dt);
 		g.minStdPHI = std::max<double>(g.minStdPHI, mrpt::DEG2RAD(params.noOdometryTurnRateDeg) * dt);
 	}
-	mrpt::obs::CActionRobotMovement2D move;
-	move.timestamp = s.tags->timestamp;
-	move.computeFromOdometry(odometry, model);
-	mrpt::obs::CActionCollection actions;
-	actions.insert(move);
-	return actions;
+	return movementAction(odometry, model, s.tags->timestamp);
 }
 
 struct Spread
@@ -139,11 +147,7 @@ mrpt::obs::CActionCollection jitterOf(const Spread& spread, const PfParams& para
 	mrpt::obs::CActionRobotMovement2D::TMotionModelOptions m = PfParams::defaultMotionModel();
 	m.gaussianModel.minStdXY = params.annealJitter * spread.position;
 	m.gaussianModel.minStdPHI = params.annealJitter * spread.heading;
-	mrpt::obs::CActionRobotMovement2D move;
-	move.computeFromOdometry(mrpt::poses::CPose2D(), m);
-	mrpt::obs::CActionCollection actions;
-	actions.insert(move);
-	return actions;
+	return movementAction(mrpt::poses::CPose2D(), m);
 }
 
 /** Tag poses, one step: predict, then update in passes with the likelihood
