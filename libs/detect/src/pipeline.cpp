@@ -277,12 +277,15 @@ class CandidateDecoder
 			return out;
 		}
 		if (keepImages_) out.report.image = plane.gray;
-		// The raw image's quads serve its ArUco decode and the soft decoder.
+		// The raw image's quads serve the ArUco decode of every variant and
+		// the soft decoder: they already hold the Otsu dark-blob outlines,
+		// so searching the binarised and half-size variants again found the
+		// same squares at twice the cost.
 		const std::vector<Quad> quads = findTagQuads(plane.gray, p_.decoder.maxQuads);
 		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
 		{
-			const bool raw = variant.gray.data == plane.gray.data;
-			if (tryReads(hard.decode(variant.gray, raw ? &quads : nullptr), variant.gray, variant.scale, plane, out))
+			const std::vector<Quad> variantQuads = scaledQuads(quads, 1.0 / variant.scale);
+			if (tryReads(hard.decode(variant.gray, &variantQuads), variant.gray, variant.scale, plane, out))
 				return out;
 		}
 		// Last resort for blurred tags: correlate quads with every code.

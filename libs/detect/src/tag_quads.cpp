@@ -186,6 +186,14 @@ std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads)
 	return out;
 }
 
+std::vector<Quad> scaledQuads(const std::vector<Quad>& quads, double factor)
+{
+	std::vector<Quad> out = quads;
+	for (Quad& q : out)
+		for (auto& c : q) c *= factor;
+	return out;
+}
+
 Quad orderedCorners(const Quad& q, int order)
 {
 	Quad c;

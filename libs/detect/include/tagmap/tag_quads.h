@@ -23,6 +23,9 @@ using Quad = std::array<Eigen::Vector2d, 4>;
  *  ring whole. Largest first, at most `maxQuads`. */
 std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads);
 
+/** `quads` in an image resized by `factor` (pixel edges scale exactly). */
+std::vector<Quad> scaledQuads(const std::vector<Quad>& quads, double factor);
+
 /** One of the 8 ways a quad's corners can be a tag's TL, TR, BR, BL:
  *  orders 0-3 rotate, 4-7 are the mirror images (the tag seen from behind). */
 Quad orderedCorners(const Quad& q, int order);
