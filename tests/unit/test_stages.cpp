@@ -331,6 +331,16 @@ TEST(ReadEvidence, FamiliesNoReadCanPassAreNotDecoded)
 	EXPECT_TRUE(acceptableFamilies({"tag16h5"}, 8, {}).empty());
 }
 
+TEST(ReadEvidence, FewestCellsToReadAreTheCodeAndTheBorderRing)
+{
+	// 36 code cells + a ring of 28 border cells; 25 + 24; the fewest of a set.
+	EXPECT_EQ(fewestCellsToRead({"tag36h11"}), 64);
+	EXPECT_EQ(fewestCellsToRead({"aruco_6x6_250"}), 64);
+	EXPECT_EQ(fewestCellsToRead({"tag25h9"}), 49);
+	EXPECT_EQ(fewestCellsToRead({"aruco_7x7_1000", "tag25h9", "tag36h11"}), 49);
+	EXPECT_EQ(fewestCellsToRead({}), 0);
+}
+
 TEST(ReadEvidence, WeakFamilyIsChanceAmongEveryFamilyButNotAloneWithItsBudget)
 {
 	// An exact aruco_4x4_50 read: among every family, a random pattern does

@@ -242,7 +242,7 @@ class CandidateDecoder
 {
    public:
 	CandidateDecoder(const PipelineParams& p, const MapView& m, const OctreeGatherer& gatherer,
-					 const DerivedLengths& len, bool keepImages, bool anyFamilyDecoded)
+					 const DerivedLengths& len, bool keepImages, const std::vector<std::string>& decodedFamilies)
 		: p_(p),
 		  m_(m),
 		  gatherer_(gatherer),
@@ -253,7 +253,8 @@ class CandidateDecoder
 		  // searched and the orientations each quad was tried in.
 		  searched_(searchFamilies(familiesAsked(p))),
 		  readOrientations_(readOrientations(p)),
-		  anyFamilyDecoded_(anyFamilyDecoded)
+		  anyFamilyDecoded_(!decodedFamilies.empty()),
+		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies)))
 	{
 	}
 
@@ -269,6 +270,13 @@ class CandidateDecoder
 		}
 		const std::vector<uint32_t> pts = gatherer_.gather(box, len_.spacing, m_.xs, m_.ys, m_.zs);
 		out.report.gatheredPoints = pts.size();
+		// The cheapest sure test, before any image is made: every cell a
+		// read relies on needs a point of its own.
+		if (pts.size() < fewestPoints_)
+		{
+			out.report.verdict = Verdict::TooFewPoints;
+			return out;
+		}
 		const PlaneImage plane = renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane);
 		out.report.verdict = Verdict::NoDecode;
 		if (plane.gray.empty())
@@ -390,6 +398,7 @@ class CandidateDecoder
 	const std::vector<std::string> searched_;
 	const int readOrientations_;
 	const bool anyFamilyDecoded_;
+	const size_t fewestPoints_;  // fewestCellsToRead() of the families decoded
 };
 
 // Gather, render, decode, solve: independent per candidate, on each
@@ -481,7 +490,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	const auto gatherer = stage.run("octree", grid.voxelCount(), [&] {
 		return std::make_unique<const OctreeGatherer>(grid, len.octreeLeaf, params_.gather, threads);
 	});
-	const CandidateDecoder decoder(params_, m, *gatherer, len, keepImages, !decodedFamilies_.empty());
+	const CandidateDecoder decoder(params_, m, *gatherer, len, keepImages, decodedFamilies_);
 	std::vector<TagDetection> found = stage.run("decode", candidates.size(), [&](const CountProgressFn& count) {
 		return decodeCandidates(decoder, candidates, out.candidates, threads, count,
 								[this](unsigned worker) { return decodersFor(worker); });

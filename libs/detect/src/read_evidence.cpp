@@ -73,6 +73,18 @@ std::vector<std::string> acceptableFamilies(const std::vector<std::string>& requ
 	return out;
 }
 
+int fewestCellsToRead(const std::vector<std::string>& families)
+{
+	int fewest = 0;
+	for (const std::string& f : families)
+	{
+		const CellRoles& roles = rolesOf(f);
+		const int cells = static_cast<int>(std::count_if(roles.role.begin(), roles.role.end(), [](uint8_t r) { return r != 2; }));
+		if (fewest == 0 || cells < fewest) fewest = cells;
+	}
+	return fewest;
+}
+
 double chanceMatchProbability(int codes, int n, int wrong, int orientations)
 {
 	// sum_{k<=wrong} C(n,k) / 2^n, in logs: n reaches 52 bits.

@@ -74,6 +74,14 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 std::vector<std::string> acceptableFamilies(const std::vector<std::string>& requested, int orientations,
 											const ReadEvidenceParams& p);
 
+/** The fewest cells a read of any of `families` must see the colour of:
+ *  its code cells and its black border ring (49 for tag25h9 and the 5x5
+ *  ArUco dictionaries, 64 for tag36h11). A point measures one footprint,
+ *  so an image rendered from fewer points than that has cells no point
+ *  measured, and what decodes there was interpolated, not read. 0 when
+ *  `families` is empty. */
+int fewestCellsToRead(const std::vector<std::string>& families);
+
 /** Probability that a uniformly random n-bit pattern lies within `wrong`
  *  bits of one of `codes` codes in one of `orientations` orientations. */
 double chanceMatchProbability(int codes, int n, int wrong, int orientations);

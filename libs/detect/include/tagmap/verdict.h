@@ -19,6 +19,7 @@ enum class Verdict
 	NotPlanar,
 	NoDecode,
 	NoFamilyCanPass,
+	TooFewPoints,
 	ByChance,
 	NoBorder,
 	NoQuietZone,
@@ -35,7 +36,7 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 14> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 15> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
@@ -45,6 +46,9 @@ inline constexpr std::array<VerdictInfo, 14> kVerdicts = {{
 	{Verdict::NoFamilyCanPass, "no_family_can_pass",
 	 "not decoded: no family asked for could pass the chance budget even read exactly (weak families searched "
 	 "with others; evidence.chance_budget)"},
+	{Verdict::TooFewPoints, "too_few_points",
+	 "fewer points gathered than the cells a read of any family searched must measure (its code cells and "
+	 "black border ring): no read of it could be evidence"},
 	{Verdict::ByChance, "by_chance",
 	 "a code was read, but a random pattern would match some code that well too often (evidence.chance_budget)"},
 	{Verdict::NoBorder, "no_border",
