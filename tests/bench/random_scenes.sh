@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
 # Detection under physics nobody tuned to: N scenes, each drawing its own
 # sensor (a stationary Livox-like rosette or a walking 32/64-beam spinner),
-# range noise 0.5-3 cm, beam divergence, intensity model (gain, incidence
-# and range fall-off, noise), ink and paper albedo, boards, and 3-5 tag-like
-# distractors (checkerboards, random-block posters, text, stripes) beside
-# 2-3 tags of the strong families, at 3-7 m (spinner) or 4.5-8 m (Livox). Every family on, no size given.
+# range noise 0.5-3 cm, beam divergence (circular 0.3-3 mrad, or elliptical
+# up to 0.52 x 5.2 mrad = 0.03 x 0.3 deg, like the real MID-40), pointing
+# jitter 0-1 mrad, range walk 0-5 mm (dark ink reads farther), intensity
+# model (gain, incidence and range fall-off, noise, saturation 0.4-1 of the
+# received level, 8 or 16 bit integer levels), ink and paper albedo, boards,
+# and 3-5 tag-like distractors (checkerboards, random-block posters, text,
+# stripes, facade window grids, QR-like codes, black-bordered squares with a
+# non-tag interior) beside 2-3 tags of the strong families, at 3-7 m
+# (spinner) or 4.5-8 m (Livox), and half the time a zebra crossing on the
+# floor. Every family on, no size given. The new physics and the zebra are
+# drawn after the scene's objects, so a seed's wall, tags and distractor
+# places and sizes are those it had before they existed (their kinds are not).
 # Prints the physics drawn per scene, then maps_table.sh's table (found,
 # false / wrong / duplicate, position and angle errors, seconds, memory).
 #
@@ -69,20 +77,42 @@ draw_scene() {
 			tags = tags " " f ":" id
 		}
 		kinds[0] = "checkerboard"; kinds[1] = "random_blocks"; kinds[2] = "text"; kinds[3] = "stripes"
-		nd = 3 + pick(3)
+		kinds[4] = "window_grid"; kinds[5] = "qr_like"; kinds[6] = "bordered_square"; kinds[7] = "window_grid"
+		nd = 3 + pick(3); drawn = ""
 		for (t = 0; t < nd; t++) {
 			free = 0; for (k = 0; k < nslots; k++) free += !used[k]
 			if (!free) break
 			do { k = pick(nslots) } while (used[k]); used[k] = 1
-			kind = kinds[pick(4)]; w = u(0.25, 0.9); cell = w / (4 + pick(6))
+			# One draw for the kind, one for the cells across: the same draws
+			# as before the new kinds existed.
+			kind = kinds[pick(8)]; w = u(0.25, 0.9); across = rand(); h = w * u(0.8, 1.1); m = (h < w ? h : w)
+			# Cells across the shorter side, + 0.01 so floor() keeps them all:
+			# a QR-like code needs 19+ modules, a bordered square 7-10 cells
+			# (interior 3-6), a window grid 2-4 pitches.
+			if (kind == "qr_like") cell = m / (19 + int(8 * across) + 0.01)
+			else if (kind == "bordered_square") cell = m / (7 + int(4 * across) + 0.01)
+			else if (kind == "window_grid") cell = m / (2 + int(3 * across) + 0.01)
+			else cell = w / (4 + int(6 * across))
 			if (!t) print "distractors:"
-			printf "  - {name: d%d, type: %s, position: [%.4f, %.3f, %.3f], normal: [-1, 0, 0], size: [%.3f, %.3f], cell: %.4f, seed: %d}\n",
-				t, kind, d - 0.0001, sy[k], sz[k], w, w * u(0.8, 1.1), cell, seed * 10 + t
+			printf "  - {name: d%d, type: %s, position: [%.4f, %.3f, %.3f], normal: [-1, 0, 0], size: [%.3f, %.3f], cell: %.5f, seed: %d}\n",
+				t, kind, d - 0.0001, sy[k], sz[k], w, h, cell, seed * 10 + t
+			drawn = drawn " " kind
+		}
+		# Drawn last, so the draws above stay those of the older benchmark.
+		elliptical = rand() < 0.6; bh = u(0.2, 0.52); bv = u(0.5, 5.2)
+		jitter = u(0, 1.0); walk = u(0, 0.005); sat = u(0.4, 1.0); bits = rand() < 0.5 ? 8 : 16
+		if (rand() < 0.5) {
+			if (drawn == "") print "distractors:"
+			printf "  - {name: zebra, type: zebra, position: [%.2f, %.2f, 0.0002], normal: [0, 0, 1], up: [1, 0, 0], size: [3, 2], cell: %.3f, seed: %d}\n",
+				d * u(0.3, 0.7), u(-1.5, 1.5), u(0.3, 0.5), seed * 10 + 9
+			drawn = drawn " zebra"
 		}
 		print "sensors:"
-		intensity = sprintf("intensity: {gain: %.2f, incidence_exponent: %.2f, range_falloff_exponent: %.2f, noise: %.3f}", gain, inc, fall, inoise)
-		if (livox) printf "  - {name: s, type: livox_mid40, range_noise: %.4f, beam: {divergence_mrad: %.2f}, %s}\n", noise, div, intensity
-		else printf "  - {name: s, type: spinning, beams: %d, vertical_fov_deg: [-22.5, 22.5], columns: 1024, rev_per_second: 10, range_noise: %.4f, beam: {divergence_mrad: %.2f}, %s}\n", (rand() < 0.5 ? 32 : 64), noise, div, intensity
+		intensity = sprintf("intensity: {gain: %.2f, incidence_exponent: %.2f, range_falloff_exponent: %.2f, noise: %.3f, saturation: %.2f, bits: %d}", gain, inc, fall, inoise, sat, bits)
+		divergence = elliptical ? sprintf("[%.2f, %.2f]", bh, bv) : sprintf("%.2f", div)
+		beam = sprintf("range_noise: %.4f, range_walk: %.4f, beam: {divergence_mrad: %s, pointing_jitter_mrad: %.2f}", noise, walk, divergence, jitter)
+		if (livox) printf "  - {name: s, type: livox_mid40, %s, %s}\n", beam, intensity
+		else printf "  - {name: s, type: spinning, beams: %d, vertical_fov_deg: [-22.5, 22.5], columns: 1024, rev_per_second: 10, %s, %s}\n", (rand() < 0.5 ? 32 : 64), beam, intensity
 		print "runs:"
 		if (livox) printf "  - {name: still, sensor: s, waypoints: [{position: [0, 0, 1.4], look_at: [%.3f, 0, 1.4]}], duration: %.1f}\n", d, u(1.0, 3.0)
 		else {
@@ -92,8 +122,9 @@ draw_scene() {
 			printf "      - {t: 0, position: [%.2f, -3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5)
 			printf "      - {t: 4, position: [%.2f, 3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5)
 		}
-		printf "%-10s %-8s %5.1f m  noise %4.1f mm  beam %4.2f mrad  gain %4.2f  incidence^%4.2f  range^%4.2f  I-noise %5.3f  tags%s\n",
-			"random_" seed, livox ? "livox" : "spinning", d, 1000 * noise, div, gain, inc, fall, inoise, tags > "/dev/stderr"
+		beamText = elliptical ? sprintf("%.2fx%.2f", bh, bv) : sprintf("%.2f", div)
+		printf "%-10s %-8s %5.1f m  noise %4.1f mm  beam %s mrad  jitter %4.2f mrad  walk %3.1f mm  gain %4.2f  incidence^%4.2f  range^%4.2f  I-noise %5.3f  sat %4.2f  %2d bit  tags%s  distractors%s\n",
+			"random_" seed, livox ? "livox" : "spinning", d, 1000 * noise, beamText, jitter, 1000 * walk, gain, inc, fall, inoise, sat, bits, tags, drawn > "/dev/stderr"
 	}'
 }
 

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
+#include "tagmap/errors.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/simulate.h"
 
@@ -166,4 +168,179 @@ TEST(SimPhysics, DepthEdgesMakeMixedPixels)
 	};
 	EXPECT_EQ(floating(0), 0u);
 	EXPECT_GT(floating(6), 50u);
+}
+
+namespace
+{
+// A noise-free wall with stripes `cell` wide on it; `up` turns them (z: the
+// stripes run vertically, y: horizontally). `sensorExtra` adds sensor keys.
+Scene stripedWall(const std::string& beam, const std::string& up, const std::string& sensorExtra = "",
+				  double cell = 0.1)
+{
+	return parseScene(
+		"name: stripes\n"
+		"objects:\n"
+		"  - {name: wall, type: plane, position: [5, 0, 0], normal: [-1, 0, 0], size: [10, 10], reflectivity: 0.5}\n"
+		"distractors:\n"
+		"  - {name: st, type: stripes, position: [4.9999, 0, 0], normal: [-1, 0, 0], up: " +
+			up + ", size: [0.8, 0.8], cell: " + std::to_string(cell) +
+			", dark: 0.06, light: 0.85}\n"
+			"sensors:\n"
+			"  - {name: tls, type: grid, azimuth_deg: [-4, 4], elevation_deg: [-4, 4], step_deg: [0.03, 0.03], "
+			"range_noise: 0, beam: {" +
+			beam + "}, intensity: {noise: 0, range_falloff_exponent: 0}" + sensorExtra +
+			"}\n"
+			"runs:\n"
+			"  - {name: s, sensor: tls, waypoints: [{position: [0, 0, 0]}]}\n",
+		"stripes.yaml");
+}
+
+// Fraction of the stripe sheet's points whose intensity is a blend of ink and paper.
+double blendedFraction(const SimulationOutput& out)
+{
+	size_t on = 0, mid = 0;
+	for (const SimPoint& p : out.points)
+		if (out.objectNames[p.object] == "st")
+		{
+			on++;
+			mid += p.intensity01 > 0.1 && p.intensity01 < 0.8;
+		}
+	return on ? static_cast<double>(mid) / on : 0;
+}
+}  // namespace
+
+TEST(SimPhysics, EllipticalBeamBlendsOnlyAcrossItsLongAxis)
+{
+	// 0.5 x 16 mrad at 5 m: 1.5 mm wide, 48 mm tall. Vertical stripes (edges
+	// vertical) are crossed by the narrow axis, horizontal ones by the long one.
+	const std::string ellipse = "divergence_mrad: [0.5, 16], sub_rays: 8";
+	const double acrossNarrow = blendedFraction(simulate(stripedWall(ellipse, "[0, 0, 1]"), {}));
+	const double acrossLong = blendedFraction(simulate(stripedWall(ellipse, "[0, 1, 0]"), {}));
+	EXPECT_LT(acrossNarrow, 0.03);
+	EXPECT_GT(acrossLong, 0.3);
+	// The scalar still means a circle: both orientations alike.
+	const std::string circle = "divergence_mrad: 8, sub_rays: 8";
+	const double v = blendedFraction(simulate(stripedWall(circle, "[0, 0, 1]"), {}));
+	const double h = blendedFraction(simulate(stripedWall(circle, "[0, 1, 0]"), {}));
+	EXPECT_GT(v, 0.1);
+	EXPECT_NEAR(v, h, 0.05);
+}
+
+TEST(SimPhysics, DivergenceScalarIsCircularPairIsElliptical)
+{
+	const Scene circle = stripedWall("divergence_mrad: 2", "[0, 0, 1]");
+	EXPECT_EQ(circle.sensors[0].beam.divergenceMrad, 2);
+	EXPECT_EQ(circle.sensors[0].beam.divergenceVerticalMrad, 2);
+	EXPECT_TRUE(circle.sensors[0].beam.circular());
+	const Scene ellipse = stripedWall("divergence_mrad: [0.5, 4.9]", "[0, 0, 1]");
+	EXPECT_EQ(ellipse.sensors[0].beam.divergenceMrad, 0.5);
+	EXPECT_EQ(ellipse.sensors[0].beam.divergenceVerticalMrad, 4.9);
+	EXPECT_FALSE(ellipse.sensors[0].beam.circular());
+	EXPECT_THROW(stripedWall("divergence_mrad: [0.5]", "[0, 0, 1]"), tagmap::InputError);
+}
+
+TEST(SimPhysics, PointingJitterMovesTheBeamNotTheReportedDirection)
+{
+	// Thin beam, no noise: every difference from the jitter-free map comes
+	// from the jitter. Points stay on their reported rays; their intensities
+	// come from where the beam really went (the incidence changes a little
+	// for every point; ink for paper only near an edge): a point within about 0.4 sigma x
+	// range of an edge (expected 2 x 0.4 sigma r / cell of them) reads the
+	// other stripe.
+	const auto base = simulate(stripedWall("sub_rays: 0", "[0, 0, 1]", "", 0.05), {});
+	auto changed = [&](double mrad) {
+		const auto j = simulate(
+			stripedWall("sub_rays: 0, pointing_jitter_mrad: " + std::to_string(mrad), "[0, 0, 1]", "", 0.05), {});
+		EXPECT_EQ(j.points.size(), base.points.size());
+		size_t n = 0;
+		for (size_t i = 0; i < j.points.size() && i < base.points.size(); i++)
+		{
+			EXPECT_LT((j.points[i].local.normalized() - base.points[i].local.normalized()).norm(), 1e-5);
+			n += std::abs(j.points[i].intensity01 - base.points[i].intensity01) > 0.3f;  // ink <-> paper
+		}
+		return static_cast<double>(n) / j.points.size();
+	};
+	EXPECT_EQ(changed(0), 0.0);
+	const double small = changed(1), large = changed(4);
+	EXPECT_NEAR(small, 0.08, 0.03);  // 1 mrad: 5 mm at 5 m on 5 cm stripes
+	EXPECT_GT(large, 2.5 * small);
+	EXPECT_LT(large, 0.45);
+}
+
+TEST(SimPhysics, RangeWalkPutsDarkInkBehindWhitePaper)
+{
+	// Falloff off, gain 1: amplitudes are the reflectivities 0.06 and 0.85,
+	// so ink reads walk x (0.85 - 0.06) farther than paper.
+	auto inkBehindPaper = [](double walk) {
+		const auto out = simulate(stripedWall("sub_rays: 0", "[0, 0, 1]", ", range_walk: " + std::to_string(walk)), {});
+		double ink = 0, paper = 0;
+		size_t ni = 0, np = 0;
+		for (const SimPoint& p : out.points)
+		{
+			if (out.objectNames[p.object] != "st") continue;
+			const double along = p.local.norm();
+			const double r = 4.9999 * along / p.local.x();  // true range along the ray
+			if (p.intensity01 < 0.1)
+				ink += along - r, ni++;
+			else
+				paper += along - r, np++;
+		}
+		EXPECT_GT(ni, 1000u);
+		EXPECT_GT(np, 1000u);
+		return ink / ni - paper / np;
+	};
+	EXPECT_NEAR(inkBehindPaper(0), 0, 1e-5);
+	EXPECT_NEAR(inkBehindPaper(0.004), 0.004 * (0.85 - 0.06), 5e-5);
+}
+
+TEST(SimPhysics, SaturationClipsAndBitsQuantize)
+{
+	// Paper 0.85 saturates at 0.5 (reads full scale); ink 0.06 reads 0.12.
+	auto run = [&](const std::string& bits) {
+		Scene s = stripedWall("sub_rays: 0", "[0, 0, 1]");
+		s.sensors[0].intensity.saturation = 0.5;
+		s.sensors[0].intensity.noiseSigma = 0.01;
+		if (!bits.empty()) s.sensors[0].intensity.bits = std::stoi(bits);
+		return simulate(s, {});
+	};
+	const auto cont = run("");
+	size_t full = 0, paper = 0;
+	for (const SimPoint& p : cont.points)
+		if (cont.objectNames[p.object] == "st" && p.intensity01 > 0.5)
+		{
+			paper++;
+			full += p.intensity01 == 1.0f;
+		}
+	EXPECT_GT(paper, 1000u);
+	EXPECT_EQ(full, paper);  // 0.85 + noise never falls below 0.5
+	for (int bits : {8, 16})
+	{
+		const auto q = run(std::to_string(bits));
+		const double levels = (1u << bits) - 1;
+		std::set<float> distinct;
+		for (const SimPoint& p : q.points)
+		{
+			const double level = p.intensity01 * levels;
+			ASSERT_NEAR(level, std::round(level), 1e-6 * levels) << bits;
+			distinct.insert(p.intensity01);
+		}
+		if (bits == 8)
+		{
+			EXPECT_LT(distinct.size(), 257u);
+		}
+		else
+		{
+			EXPECT_GT(distinct.size(), 256u);  // noise 0.01 spans ~1300 levels
+		}
+	}
+	const Scene parsed = parseScene(
+		"name: q\nobjects: []\nsensors:\n  - {name: s, type: spinning, intensity: {saturation: 0.5, bits: 16}}\n"
+		"runs:\n  - {name: r, sensor: s, duration: 0.1, waypoints: [{position: [0, 0, 0]}]}\n",
+		"q.yaml");
+	EXPECT_EQ(parsed.sensors[0].intensity.bits, 16);
+	EXPECT_EQ(parsed.sensors[0].intensity.saturation, 0.5);
+	EXPECT_THROW(parseScene("name: q\nobjects: []\nsensors:\n  - {name: s, type: spinning, intensity: {bits: 12}}\n"
+							"runs:\n  - {name: r, sensor: s, duration: 0.1, waypoints: [{position: [0, 0, 0]}]}\n",
+							"q.yaml"),
+				 tagmap::InputError);
 }

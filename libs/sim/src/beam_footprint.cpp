@@ -11,16 +11,33 @@ BeamFootprint::BeamFootprint(const BeamParams& p, const IntensityModel& intensit
 	// Ring radius at ~60 % of the half-divergence: for a Gaussian beam whose
 	// divergence is quoted at 1/e^2 this puts the samples near the energy
 	// centroid of the outer annulus, so centre + ring weigh about equally.
-	const double r = 0.6 * 0.5 * p.divergenceMrad * 1e-3;
+	// An elliptical beam scales the ring per axis (x horizontal, y vertical).
+	const double rh = 0.6 * 0.5 * p.divergenceMrad * 1e-3;
+	const double rv = 0.6 * 0.5 * p.divergenceVerticalMrad * 1e-3;
 	for (int k = 0; k < p.subRays; k++)
 	{
 		const double a = 2 * M_PI * (k + 0.5) / p.subRays;
-		ring_.emplace_back(r * std::cos(a), r * std::sin(a));
+		ring_.emplace_back(rh * std::cos(a), rv * std::sin(a));
 	}
 }
 
-bool BeamFootprint::measure(const World& world, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double minRange,
-							double maxRange, Echo& echo) const
+void BeamFootprint::crossSection(const Eigen::Vector3d& d, const Eigen::Vector3d& up, Eigen::Vector3d& e1,
+								 Eigen::Vector3d& e2) const
+{
+	// A circle needs no orientation: the fixed world-z helper keeps its
+	// sample directions exactly as they always were (maps reproducible
+	// across versions). An ellipse is fixed to the sensor: e1 horizontal
+	// (perpendicular to the beam and the sensor's up), e2 towards up.
+	const Eigen::Vector3d ref = p_.circular() ? Eigen::Vector3d::UnitZ() : up;
+	// A beam along `ref` itself: any helper across it will do.
+	const Eigen::Vector3d across = p_.circular() ? Eigen::Vector3d::UnitX() : ref.unitOrthogonal();
+	const Eigen::Vector3d helper = std::abs(d.dot(ref)) < 0.9 ? ref : across;
+	e1 = d.cross(helper).normalized();
+	e2 = d.cross(e1);
+}
+
+bool BeamFootprint::measure(const World& world, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+							const Eigen::Vector3d& up, double minRange, double maxRange, Echo& echo) const
 {
 	struct Sub
 	{
@@ -37,10 +54,8 @@ bool BeamFootprint::measure(const World& world, const Eigen::Vector3d& o, const 
 		subs[n++] = {h.t, intensity_.returnStrength(h.reflectivity, h.cosIncidence), h.object};
 	if (total > 1)
 	{
-		// Orthonormal basis of the beam's cross-section.
-		const Eigen::Vector3d helper = std::abs(d.z()) < 0.9 ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitX();
-		const Eigen::Vector3d e1 = d.cross(helper).normalized();
-		const Eigen::Vector3d e2 = d.cross(e1);
+		Eigen::Vector3d e1, e2;
+		crossSection(d, up, e1, e2);
 		for (int k = 0; k + 1 < total; k++)
 		{
 			const Eigen::Vector3d ds = (d + ring_[k].x() * e1 + ring_[k].y() * e2).normalized();

@@ -8,6 +8,7 @@
 
 #include "tagmap/sim/beam_footprint.h"
 #include "tagmap/sim/intensity_model.h"
+#include "tagmap/sim/pointing_jitter.h"
 #include "tagmap/sim/range_noise.h"
 #include "tagmap/sim/rng.h"
 #include "tagmap/sim/scan_pattern.h"
@@ -27,6 +28,7 @@ struct SensorModels
 	std::unique_ptr<IntensityModel> intensity;
 	std::unique_ptr<BeamFootprint> footprint;
 	std::unique_ptr<RangeNoise> noise;
+	std::unique_ptr<PointingJitter> jitter;
 };
 
 void castBlock(const Block& b, const Frame& f, const ScanRun& run, const SensorSpec& spec, const SensorModels& m,
@@ -42,9 +44,10 @@ void castBlock(const Block& b, const Frame& f, const ScanRun& run, const SensorS
 		m.pattern->ray(f.clock, i, dirS, dt);
 		const Eigen::Isometry3d T = f.moving ? interpolatePose(run.waypoints, f.t0 + dt) : f.truePose;
 		const Eigen::Vector3d o = T.translation();
-		const Eigen::Vector3d d = T.linear() * dirS;
-		if (!m.footprint->measure(world, o, d, spec.minRange, spec.maxRange, echo)) continue;
-		const double r = m.noise->apply(echo.range, rng);
+		const Eigen::Vector3d d = T.linear() * dirS;  // as the encoders report it
+		const Eigen::Vector3d beam = m.jitter->apply(d, rng);  // where the pulse really goes
+		if (!m.footprint->measure(world, o, beam, T.linear().col(2), spec.minRange, spec.maxRange, echo)) continue;
+		const double r = m.noise->apply(echo.range, m.intensity->amplitude(echo.strength, echo.range), rng);
 		SimPoint p;
 		Eigen::Vector3d local = refInv * (o + r * d);  // perfectly deskewed
 		if (f.moving && run.deskewResidual > 0)
@@ -67,7 +70,8 @@ EngineResult castFrames(const Scene& scene, const World& world, const std::vecto
 		models[s].pattern = makeScanPattern(spec);
 		models[s].intensity = std::make_unique<IntensityModel>(spec.intensity);
 		models[s].footprint = std::make_unique<BeamFootprint>(spec.beam, *models[s].intensity);
-		models[s].noise = std::make_unique<RangeNoise>(spec.rangeNoiseSigma);
+		models[s].noise = std::make_unique<RangeNoise>(spec.rangeNoiseSigma, spec.rangeWalk);
+		models[s].jitter = std::make_unique<PointingJitter>(spec.beam.pointingJitterMrad);
 	}
 
 	EngineResult res;

@@ -1,5 +1,6 @@
 #include "tagmap/sim/scene_loader.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -81,19 +82,22 @@ SceneObject parseDistractor(const YamlReader& r)
 	DistractorSpec s;
 	s.name = r.text("name", r.path());
 	const std::string type = r.text("type");
-	if (type == "checkerboard")
-		s.kind = DistractorKind::Checkerboard;
-	else if (type == "random_blocks" || type == "poster")
-		s.kind = DistractorKind::RandomBlocks;
-	else if (type == "text")
-		s.kind = DistractorKind::Text;
-	else if (type == "stripes")
-		s.kind = DistractorKind::Stripes;
-	else if (type == "mirrored_tag")
-		s.kind = DistractorKind::MirroredTag;
-	else
-		r.child("type").fail("unknown distractor type '" + type +
-							 "' (checkerboard, random_blocks, text, stripes, mirrored_tag)");
+	// Names as written in scenes ("poster" is an older name of random_blocks).
+	static const std::vector<std::pair<std::string, DistractorKind>> kinds = {
+		{"checkerboard", DistractorKind::Checkerboard}, {"random_blocks", DistractorKind::RandomBlocks},
+		{"poster", DistractorKind::RandomBlocks},		{"text", DistractorKind::Text},
+		{"stripes", DistractorKind::Stripes},			{"mirrored_tag", DistractorKind::MirroredTag},
+		{"window_grid", DistractorKind::WindowGrid},	{"zebra", DistractorKind::Zebra},
+		{"qr_like", DistractorKind::QrLike},			{"bordered_square", DistractorKind::BorderedSquare}};
+	const auto kind = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == type; });
+	if (kind == kinds.end())
+	{
+		std::string names;
+		for (const auto& k : kinds)
+			if (k.first != "poster") names += (names.empty() ? "" : ", ") + k.first;
+		r.child("type").fail("unknown distractor type '" + type + "' (" + names + ")");
+	}
+	s.kind = kind->second;
 	if (s.kind == DistractorKind::MirroredTag)
 	{
 		s.family = r.text("family");
@@ -115,6 +119,9 @@ SceneObject parseDistractor(const YamlReader& r)
 	s.width = sz[0];
 	s.height = sz[1];
 	s.cell = r.positive("cell", s.cell);
+	if (cellsIn(std::min(s.width, s.height), s.cell) < minCellsAcross(s.kind))
+		r.child("size").fail("a " + type + " needs at least " + std::to_string(minCellsAcross(s.kind)) +
+							 " cells of " + std::to_string(s.cell) + " m across its shorter side");
 	s.fill = r.number("fill", s.fill);
 	if (s.fill < 0 || s.fill > 1) r.child("fill").fail("must be within 0..1");
 	s.seed = static_cast<uint64_t>(r.integer("seed", 1));

@@ -14,6 +14,23 @@ void readInterval(const YamlReader& r, const std::string& key, double& lo, doubl
 	hi = v[1];
 }
 
+void setCircularBeam(BeamParams& b, double mrad) { b.divergenceMrad = b.divergenceVerticalMrad = mrad; }
+
+// `divergence_mrad: 1.6` (circular) or `[horizontal, vertical]` (elliptical).
+void readDivergence(const YamlReader& b, BeamParams& beam)
+{
+	if (!b.has("divergence_mrad")) return;
+	if (!b.child("divergence_mrad").isSequence())
+	{
+		setCircularBeam(beam, b.positive("divergence_mrad", 0, true));
+		return;
+	}
+	const auto v = b.numbers("divergence_mrad", 2);
+	if (v[0] < 0 || v[1] < 0) b.child("divergence_mrad").fail("divergences must be >= 0");
+	beam.divergenceMrad = v[0];
+	beam.divergenceVerticalMrad = v[1];
+}
+
 // Defaults that make each type a plausible real device without any options.
 SensorSpec defaultsFor(SensorKind kind)
 {
@@ -23,22 +40,23 @@ SensorSpec defaultsFor(SensorKind kind)
 	{
 		case SensorKind::Rosette:  // Livox MID-40: 2 cm range noise, 0.28 x 0.03 deg beam
 			s.rangeNoiseSigma = 0.02;
-			// The footprint model is circular; the datasheet's 4.9 x 0.5 mrad
-			// ellipse becomes the circle of equal area.
-			s.beam.divergenceMrad = 1.6;
+			// The datasheet's 4.9 x 0.5 mrad ellipse as the circle of equal
+			// area (the shipped scenes' maps were made so);
+			// `divergence_mrad: [0.5, 4.9]` gives the real ellipse.
+			setCircularBeam(s.beam, 1.6);
 			s.minRange = 1.0;
 			s.maxRange = 260;
 			break;
 		case SensorKind::Spinning:  // 32-beam Ouster/Velodyne-like
 			s.rangeNoiseSigma = 0.015;
-			s.beam.divergenceMrad = 3.0;
+			setCircularBeam(s.beam, 3.0);
 			s.minRange = 0.5;
 			s.maxRange = 120;
 			for (int i = 0; i < 32; i++) s.spinning.beamElevationsDeg.push_back(-22.5 + 45.0 * i / 31);
 			break;
 		case SensorKind::Grid:  // phase/pulse terrestrial scanner
 			s.rangeNoiseSigma = 0.003;
-			s.beam.divergenceMrad = 0.5;
+			setCircularBeam(s.beam, 0.5);
 			s.minRange = 0.6;
 			s.maxRange = 150;
 			break;
@@ -49,7 +67,7 @@ SensorSpec defaultsFor(SensorKind kind)
 
 SensorSpec parseSensor(const YamlReader& r)
 {
-	r.allowKeys({"name", "type", "range_noise", "range", "frame_period", "beam", "intensity", "fov_deg",
+	r.allowKeys({"name", "type", "range_noise", "range_walk", "range", "frame_period", "beam", "intensity", "fov_deg",
 				 "points_per_second", "prism_rpm", "beams", "vertical_fov_deg", "elevations_deg", "columns",
 				 "rev_per_second", "azimuth_deg", "elevation_deg", "step_deg"});
 	const std::string type = r.text("type");
@@ -66,23 +84,25 @@ SensorSpec parseSensor(const YamlReader& r)
 	SensorSpec s = defaultsFor(kind);
 	s.name = r.text("name");
 	s.rangeNoiseSigma = r.positive("range_noise", s.rangeNoiseSigma, true);
+	s.rangeWalk = r.positive("range_walk", s.rangeWalk, true);
 	readInterval(r, "range", s.minRange, s.maxRange);
 	s.framePeriod = r.positive("frame_period", s.framePeriod);
 
 	if (r.has("beam"))
 	{
 		const YamlReader b = r.child("beam");
-		b.allowKeys({"divergence_mrad", "sub_rays", "mixing_window"});
-		s.beam.divergenceMrad = b.positive("divergence_mrad", s.beam.divergenceMrad, true);
+		b.allowKeys({"divergence_mrad", "sub_rays", "mixing_window", "pointing_jitter_mrad"});
+		readDivergence(b, s.beam);
 		s.beam.subRays = b.integer("sub_rays", s.beam.subRays);
 		if (s.beam.subRays < 0 || s.beam.subRays > 32) b.child("sub_rays").fail("must be 0..32");
 		s.beam.mixingWindow = b.positive("mixing_window", s.beam.mixingWindow, true);
+		s.beam.pointingJitterMrad = b.positive("pointing_jitter_mrad", s.beam.pointingJitterMrad, true);
 	}
 	if (r.has("intensity"))
 	{
 		const YamlReader i = r.child("intensity");
 		i.allowKeys({"gain", "incidence_exponent", "range_reference", "range_falloff_exponent", "noise",
-					 "detection_threshold"});
+					 "detection_threshold", "saturation", "bits"});
 		IntensityParams& p = s.intensity;
 		p.gain = i.positive("gain", p.gain);
 		p.incidenceExponent = i.positive("incidence_exponent", p.incidenceExponent, true);
@@ -90,6 +110,10 @@ SensorSpec parseSensor(const YamlReader& r)
 		p.rangeFalloffExponent = i.positive("range_falloff_exponent", p.rangeFalloffExponent, true);
 		p.noiseSigma = i.positive("noise", p.noiseSigma, true);
 		p.detectionThreshold = i.positive("detection_threshold", p.detectionThreshold, true);
+		p.saturation = i.positive("saturation", p.saturation);
+		if (p.saturation > 1) i.child("saturation").fail("must be within (0, 1]: the received level that reads full scale");
+		p.bits = i.integer("bits", p.bits);
+		if (p.bits != 0 && p.bits != 8 && p.bits != 16) i.child("bits").fail("must be 8 or 16 (0: continuous)");
 	}
 
 	switch (kind)

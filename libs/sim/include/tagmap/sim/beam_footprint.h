@@ -26,9 +26,15 @@ class BeamFootprint
    public:
 	BeamFootprint(const BeamParams& p, const IntensityModel& intensity);
 
-	/** Casts the beam along unit `d` from `o`; false when nothing is detected. */
-	bool measure(const World& world, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double minRange,
-				 double maxRange, Echo& echo) const;
+	/** Casts the beam along unit `d` from `o`; `up` is the sensor's up axis
+	 *  (orients an elliptical footprint). False when nothing is detected. */
+	bool measure(const World& world, const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& up,
+				 double minRange, double maxRange, Echo& echo) const;
+
+	/** Orthonormal basis (e1 horizontal, e2 vertical) of the cross-section of
+	 *  a beam along `d` from a sensor whose up axis is `up`. */
+	void crossSection(const Eigen::Vector3d& d, const Eigen::Vector3d& up, Eigen::Vector3d& e1,
+					  Eigen::Vector3d& e2) const;
 
    private:
 	BeamParams p_;

@@ -1,6 +1,8 @@
 // What a LiDAR reports as intensity: the echo strength of a diffuse surface
 // (reflectivity x cos(incidence)^k), a residual range falloff left after the
-// sensor's own calibration, additive noise, clamped to 0..1. The output
+// sensor's own calibration, additive noise, clipped at the receiver's
+// saturation level (full scale), quantized to the sensor's native bit depth
+// (8 or 16 bits: integer levels, not a continuum). The output
 // scale (0..1, 0..255, 0..65535) is applied only when writing points, so
 // changing it never changes a ray or a noise draw.
 #pragma once
@@ -27,12 +29,22 @@ class IntensityModel
 	/** True if an echo of this strength at this range is detected at all. */
 	bool detected(double strength, double range) const { return strength * falloff(range) >= p_.detectionThreshold; }
 
+	/** Noise-free received level in 0..1 of full scale (saturated echoes
+	 *  are 1): what the range walk depends on. */
+	double amplitude(double strength, double range) const
+	{
+		return std::clamp(p_.gain * strength * falloff(range) / p_.saturation, 0.0, 1.0);
+	}
+
 	/** Reported intensity in 0..1. `strength` is the footprint-averaged
 	 *  returnStrength() of the echo (missed sub-rays count as zero). */
 	double intensity(double strength, double range, Rng& rng) const
 	{
 		const double v = p_.gain * strength * falloff(range) + p_.noiseSigma * gaussian(rng);
-		return std::clamp(v, 0.0, 1.0);
+		const double clipped = std::clamp(v / p_.saturation, 0.0, 1.0);
+		if (p_.bits <= 0) return clipped;
+		const double levels = static_cast<double>((1u << p_.bits) - 1u);
+		return std::round(clipped * levels) / levels;
 	}
 
    private:
