@@ -128,3 +128,26 @@ TEST(Pipeline, PlainWallHasNoTags)
 	TagDetection truth;
 	EXPECT_TRUE(Pipeline().detect(makeWall(s, truth)).tags.empty());
 }
+
+TEST(IntermediatePlane, PixelsNeedNotBeFinerThanTheSmallestCell)
+{
+	// A 6 mm scan renders at 0.6 x its spacing; when the smallest cell a tag
+	// in the box could have is 5 cm, pixels of 5 mm (10 per cell) resolve it.
+	WallScene s;
+	TagDetection truth;
+	const auto map = makeWall(s, truth);
+	std::vector<uint32_t> all(map.size());
+	for (uint32_t i = 0; i < all.size(); i++) all[i] = i;
+	OrientedBox box;
+	box.center = truth.position();
+	box.axes = truth.pose.linear();
+	box.extent = Eigen::Vector3d(0.3, 0.3, 0.01);
+	const float *xs = map.getPointsBufferRef_x().data(), *ys = map.getPointsBufferRef_y().data(),
+				*zs = map.getPointsBufferRef_z().data(), *is = map.getPointsBufferRef_intensity().data();
+	const IntermediatePlaneParams p;
+	const PlaneImage fine = renderIntermediatePlane(xs, ys, zs, is, all, box, s.spacing, p);
+	const PlaneImage capped = renderIntermediatePlane(xs, ys, zs, is, all, box, s.spacing, p, 0.05);
+	EXPECT_NEAR(fine.frame.pixel, p.pixelSpacings * s.spacing, 0.2 * p.pixelSpacings * s.spacing);
+	EXPECT_DOUBLE_EQ(capped.frame.pixel, 0.05 / p.pixelsPerCell);
+	EXPECT_LT(capped.gray.cols, 0.8 * fine.gray.cols);  // 0.8 m of wall: 160 px + padding, not 222
+}

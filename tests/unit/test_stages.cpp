@@ -16,6 +16,7 @@
 #include "tagmap/surface_noise.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_quads.h"
+#include "tagmap/voxel_grid.h"
 
 using namespace tagmap;
 
@@ -81,6 +82,42 @@ TEST(CandidateFilter, PaperCriteria)
 	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::Squareness);
 	box.extent = {0.22, 0.2, 0.15};
 	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::NotFlat);
+}
+
+TEST(CandidateFilter, SmallestTagInABoxFollowsCriterion1)
+{
+	// Criterion 1's upper bound turned round: a 1 m box (diagonal 1.414 m)
+	// holds no tag under 1.414 / (2 x 2) - 2 x band; a small box the
+	// smallest size asked for; a given size is the size.
+	CandidateFilterParams p;
+	OrientedBox box;
+	box.extent = {1.0, 1.0, 0.01};
+	EXPECT_NEAR(smallestTagIn(box, 0.02, p), std::sqrt(2.0) / 4 - 0.04, 1e-12);
+	box.extent = {0.2, 0.2, 0.01};
+	EXPECT_DOUBLE_EQ(smallestTagIn(box, 0.02, p), p.minTagSize);
+	p.tagSize = 0.3;
+	EXPECT_DOUBLE_EQ(smallestTagIn(box, 0.02, p), 0.3);
+}
+
+TEST(VoxelGrid, RowScanVisitsTheSameVoxelsAsFind)
+{
+	// A sparse random cloud: every row segment's voxels, scanned forward
+	// from one search, are the ones find() reports cell by cell.
+	std::mt19937 rng(3);
+	std::uniform_real_distribution<float> u(0.0f, 1.0f);
+	std::vector<float> x(2000), y(2000), z(2000);
+	for (size_t i = 0; i < x.size(); i++) x[i] = u(rng), y[i] = u(rng), z[i] = 0.2f * u(rng);
+	const VoxelGrid grid(x.data(), y.data(), z.data(), x.size(), 0.05, 1);
+	for (int zk = -1; zk < 8; zk++)
+		for (int yk = -1; yk < 25; yk++)
+			for (int x0 : {-3, 0, 5, 17})
+			{
+				std::vector<size_t> scanned, found;
+				grid.forEachVoxelInRow(x0, x0 + 6, yk, zk, [&](size_t v) { scanned.push_back(v); });
+				for (int xk = x0; xk <= x0 + 6; xk++)
+					if (const int64_t v = grid.find({xk, yk, zk}); v >= 0) found.push_back(static_cast<size_t>(v));
+				EXPECT_EQ(scanned, found) << x0 << " " << yk << " " << zk;
+			}
 }
 
 // The noise every flatness test is measured against: a 1 m patch on a 1 cm

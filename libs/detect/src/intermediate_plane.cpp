@@ -51,7 +51,7 @@ cv::Mat blurredAtScale(const cv::Mat& img, double s)
 
 PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float* zs, const float* is,
 								   const std::vector<uint32_t>& points, const OrientedBox& box, double spacing,
-								   const IntermediatePlaneParams& p)
+								   const IntermediatePlaneParams& p, double smallestCell)
 {
 	PlaneImage out;
 	if (points.size() < 16) return out;
@@ -97,6 +97,7 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	const double area = std::max((hi - lo).prod(), 1e-8);
 	out.localSpacing = std::sqrt(area / static_cast<double>(in.size()));
 	fr.pixel = std::max(p.pixelSpacings * out.localSpacing, (hi - lo).maxCoeff() / p.maxImagePixels);
+	if (smallestCell > 0 && p.pixelsPerCell > 0) fr.pixel = std::max(fr.pixel, smallestCell / p.pixelsPerCell);
 	const int pad = p.paddingPixels;
 	const int W = static_cast<int>(std::ceil((hi.x() - lo.x()) / fr.pixel)) + 2 * pad;
 	const int H = static_cast<int>(std::ceil((hi.y() - lo.y()) / fr.pixel)) + 2 * pad;

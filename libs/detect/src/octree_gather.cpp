@@ -79,10 +79,7 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 		const VoxelKey kb = grid_.keyOf((qb.array() - cell * 1e-6).matrix().cast<float>());
 		for (int z = ka.z; z <= kb.z; z++)
 			for (int y = ka.y; y <= kb.y; y++)
-				for (int x = ka.x; x <= kb.x; x++)
-				{
-					const int64_t v = grid_.find({x, y, z});
-					if (v < 0) continue;
+				grid_.forEachVoxelInRow(ka.x, kb.x, y, z, [&](size_t v) {
 					for (const uint32_t* p = grid_.begin(v); p != grid_.end(v); ++p)
 					{
 						const Eigen::Vector3d q =
@@ -90,7 +87,7 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 						if (std::abs(q.x()) <= half.x() && std::abs(q.y()) <= half.y() && std::abs(q.z()) <= half.z())
 							out.push_back(*p);
 					}
-				}
+				});
 	}
 	std::sort(out.begin(), out.end());
 	out.erase(std::unique(out.begin(), out.end()), out.end());

@@ -233,6 +233,15 @@ std::vector<std::string> familiesAsked(const PipelineParams& p)
 	return p.families.empty() ? parseFamilyList("") : p.families;
 }
 
+// The most cells across a tag's border square of any of `families`: a
+// tag's size spans that many of its cells (aruco_7x7: 9).
+int mostCellsAcross(const std::vector<std::string>& families)
+{
+	int most = 0;
+	for (const std::string& f : families) most = std::max(most, renderTagBitmap(f, 0).borderCells);
+	return most;
+}
+
 // The orientations each quad is read in: 4 rotations, each also mirrored.
 int readOrientations(const PipelineParams& p) { return p.decoder.tryMirrored ? 8 : 4; }
 
@@ -254,7 +263,8 @@ class CandidateDecoder
 		  searched_(searchFamilies(familiesAsked(p))),
 		  readOrientations_(readOrientations(p)),
 		  anyFamilyDecoded_(!decodedFamilies.empty()),
-		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies)))
+		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies))),
+		  mostBorderCells_(mostCellsAcross(decodedFamilies))
 	{
 	}
 
@@ -277,7 +287,8 @@ class CandidateDecoder
 			out.report.verdict = Verdict::TooFewPoints;
 			return out;
 		}
-		const PlaneImage plane = renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane);
+		const PlaneImage plane =
+			renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane, smallestCell(box));
 		out.report.verdict = Verdict::NoDecode;
 		if (plane.gray.empty())
 		{
@@ -350,6 +361,15 @@ class CandidateDecoder
 		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
 	}
 
+	// The smallest tag cell that could be in `box`: the image need not
+	// resolve anything finer (IntermediatePlaneParams::pixelsPerCell).
+	double smallestCell(const OrientedBox& box) const
+	{
+		const double side =
+			smallestTagIn(box, len_.candidateBand, sizes_) * (p_.tagSize > 0 ? 1 - kGivenSizeTolerance : 1.0);
+		return mostBorderCells_ > 0 ? side / mostBorderCells_ : 0;
+	}
+
 	bool sizeAsked(double measured) const
 	{
 		return p_.tagSize > 0 ? std::abs(measured / p_.tagSize - 1) <= kGivenSizeTolerance
@@ -399,6 +419,7 @@ class CandidateDecoder
 	const int readOrientations_;
 	const bool anyFamilyDecoded_;
 	const size_t fewestPoints_;  // fewestCellsToRead() of the families decoded
+	const int mostBorderCells_;  // mostCellsAcross() of the families decoded
 };
 
 // Gather, render, decode, solve: independent per candidate, on each

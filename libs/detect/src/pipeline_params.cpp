@@ -78,6 +78,7 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		 {{"pixel_spacings", bind(p.plane.pixelSpacings)},
 		  {"splat_spacings", bind(p.plane.splatSpacings)},
 		  {"max_image_pixels", bind(p.plane.maxImagePixels)},
+		  {"pixels_per_cell", bind(p.plane.pixelsPerCell)},
 		  {"inlier_sigmas", bind(p.plane.inlierSigmas)}}},
 		{"decoder",
 		 {{"try_mirrored", bind(p.decoder.tryMirrored)},
@@ -243,6 +244,8 @@ void PipelineParams::validate() const
 	positive(plane.pixelSpacings, "plane.pixel_spacings");
 	positive(plane.splatSpacings, "plane.splat_spacings");
 	if (plane.maxImagePixels < 32) throw std::invalid_argument("plane.max_image_pixels must be at least 32");
+	if (!(plane.pixelsPerCell == 0 || plane.pixelsPerCell >= 2))
+		throw std::invalid_argument("plane.pixels_per_cell must be 0 (no cap) or at least 2");
 	if (gather.octreeCellsPerLeaf < 1) throw std::invalid_argument("gather.octree_cells_per_leaf must be at least 1");
 	for (const auto& v : imageVariants)
 		if (v != "raw" && v != "otsu" && v != "half")

@@ -23,6 +23,11 @@ struct IntermediatePlaneParams
 	double pixelSpacings = 0.6;  // pixel edge, in local point spacings
 	double splatSpacings = 0.6;  // Gaussian splat sigma, in local point spacings
 	int maxImagePixels = 1200;  // image edge cap
+	/** The finest image a decode needs: the smallest cell a tag in the box
+	 *  could have (renderIntermediatePlane's `smallestCell`) this many
+	 *  pixels across. Dense maps (mm spacing) made images far sharper
+	 *  than any cell, and every image step costs per pixel. 0: no cap. */
+	double pixelsPerCell = 10;
 	double inlierSigmas = 3.0;  // plane inliers: |distance| <= this x residual RMS
 	int paddingPixels = 8;  // uniform border so tags at the edge still decode
 };
@@ -54,9 +59,11 @@ struct PlaneImage
 };
 
 /** Fits the plane, projects and renders. Returns an empty image when the
- *  points do not make a plane. `box` seeds the plane and the in-plane axes. */
+ *  points do not make a plane. `box` seeds the plane and the in-plane axes;
+ *  `smallestCell` (metres, 0 = unknown) is the smallest tag cell the image
+ *  must resolve: pixels need not be finer than smallestCell / pixelsPerCell. */
 PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float* zs, const float* is,
 								   const std::vector<uint32_t>& points, const OrientedBox& box, double spacing,
-								   const IntermediatePlaneParams& p);
+								   const IntermediatePlaneParams& p, double smallestCell = 0);
 
 }  // namespace tagmap

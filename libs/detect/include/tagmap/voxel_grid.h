@@ -57,6 +57,21 @@ class VoxelGrid
 	/** Position of a voxel's first point in the sorted order (begin(v) - begin(0)). */
 	size_t voxelOffset(size_t voxel) const { return voxelStart_[voxel]; }
 
+	/** Calls f(voxelIndex) for every non-empty voxel of row (y, z) with x
+	 *  in [x0, x1], in ascending index: keys along x are consecutive, so one
+	 *  binary search and a forward scan instead of a search per cell. */
+	template <typename F>
+	void forEachVoxelInRow(int x0, int x1, int y, int z, F&& f) const
+	{
+		if (y < 0 || z < 0 || static_cast<uint64_t>(y) >= dims_[1] || static_cast<uint64_t>(z) >= dims_[2]) return;
+		x0 = std::max(x0, 0);
+		x1 = static_cast<int>(std::min<int64_t>(x1, static_cast<int64_t>(dims_[0]) - 1));
+		if (x1 < x0) return;
+		const uint64_t last = linear({x1, y, z});
+		for (auto it = std::lower_bound(keys_.begin(), keys_.end(), linear({x0, y, z})); it != keys_.end() && *it <= last; ++it)
+			f(static_cast<size_t>(it - keys_.begin()));
+	}
+
 	/** Calls f(voxelIndex) for every non-empty voxel in the (2r+1)^3 block
 	 *  around k, in ascending voxel index. Binary searches: for sweeping
 	 *  all voxels, NeighbourSweep is much faster. */
@@ -64,12 +79,7 @@ class VoxelGrid
 	void forEachNeighbourVoxel(const VoxelKey& k, int r, F&& f) const
 	{
 		for (int dz = -r; dz <= r; dz++)
-			for (int dy = -r; dy <= r; dy++)
-				for (int dx = -r; dx <= r; dx++)
-				{
-					const int64_t v = find({k.x + dx, k.y + dy, k.z + dz});
-					if (v >= 0) f(static_cast<size_t>(v));
-				}
+			for (int dy = -r; dy <= r; dy++) forEachVoxelInRow(k.x - r, k.x + r, k.y + dy, k.z + dz, f);
 	}
 
 	/** The 3x3x3 neighbourhoods of voxels visited in ascending order: nine
