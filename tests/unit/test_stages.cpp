@@ -10,6 +10,7 @@
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
 #include "tagmap/intensity_gradient.h"
+#include "tagmap/merge_detections.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/read_evidence.h"
 #include "tagmap/support_plane.h"
@@ -118,6 +119,47 @@ TEST(VoxelGrid, RowScanVisitsTheSameVoxelsAsFind)
 					if (const int64_t v = grid.find({xk, yk, zk}); v >= 0) found.push_back(static_cast<size_t>(v));
 				EXPECT_EQ(scanned, found) << x0 << " " << yk << " " << zk;
 			}
+}
+
+namespace
+{
+TagDetection readAt(const std::string& family, int id, double size, const Eigen::Vector3d& at, double fit, int points)
+{
+	TagDetection t;
+	t.family = family;
+	t.id = id;
+	t.size = size;
+	t.pose.translation() = at;
+	t.patternFit = fit;
+	t.patternPoints = points;
+	return t;
+}
+}  // namespace
+
+TEST(MergeDetections, OneSquareOneTag)
+{
+	const Eigen::Vector3d c(2, 1, 1);
+	// A 4x4 ArUco read into the inner cells of a tag36h11 (off its centre,
+	// inside its square) is dropped, even with the better fit.
+	auto kept = mergeDetections({readAt("tag36h11", 5, 0.4, c, 0.90, 2000),
+								 readAt("aruco_4x4_50", 7, 0.15, c + Eigen::Vector3d(0.12, 0.12, 0), 0.97, 300)});
+	ASSERT_EQ(kept.size(), 1u);
+	EXPECT_EQ(kept[0].family, "tag36h11");
+	// Two codes on one square, fits 0.90 and 0.88 over 1500 points: 1.3
+	// standard errors apart, ambiguous: neither.
+	EXPECT_TRUE(mergeDetections({readAt("tag36h11", 5, 0.4, c, 0.90, 1500),
+								 readAt("tag25h9", 3, 0.4, c + Eigen::Vector3d(0.01, 0, 0), 0.88, 1500)})
+					.empty());
+	// 0.95 against 0.70: the template that explains the points wins.
+	kept = mergeDetections({readAt("tag25h9", 3, 0.4, c, 0.70, 1500), readAt("tag36h11", 5, 0.4, c, 0.95, 1500)});
+	ASSERT_EQ(kept.size(), 1u);
+	EXPECT_EQ(kept[0].family, "tag36h11");
+	// The same code from two boxes is one tag; tags side by side are two.
+	EXPECT_EQ(mergeDetections({readAt("tag36h11", 5, 0.4, c, 0.9, 900), readAt("tag36h11", 5, 0.4, c, 0.8, 900)}).size(), 1u);
+	EXPECT_EQ(mergeDetections({readAt("tag36h11", 5, 0.4, c, 0.9, 900),
+							   readAt("tag36h11", 6, 0.4, c + Eigen::Vector3d(0, 0.6, 0), 0.9, 900)})
+				  .size(),
+			  2u);
 }
 
 // The noise every flatness test is measured against: a 1 m patch on a 1 cm

@@ -257,6 +257,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		}
 	}
 	t.patternFit = best.correlation;
+	t.patternPoints = static_cast<int>(best.used);
 	if (best.correlation < p.minPatternFit) return false;
 
 	Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();

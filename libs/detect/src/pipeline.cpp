@@ -516,7 +516,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		return decodeCandidates(decoder, candidates, out.candidates, threads, count,
 								[this](unsigned worker) { return decodersFor(worker); });
 	});
-	out.tags = stage.run("merge", found.size(), [&] { return mergeDetections(std::move(found)); });
+	out.tags = stage.run("merge", found.size(), [&] { return mergeDetections(std::move(found), params_.merge); });
 	out.totalSeconds = std::chrono::duration<double>(Clock::now() - tStart).count();
 	return out;
 }

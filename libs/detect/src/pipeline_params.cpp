@@ -105,6 +105,7 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"columns", bind(p.frontSide.columns)},
 		  {"blocked_fraction", bind(p.frontSide.blockedFraction)},
 		  {"free_fraction", bind(p.frontSide.freeFraction)}}},
+		{"merge", {{"conflict_sigmas", bind(p.merge.conflictSigmas)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -260,6 +261,7 @@ void PipelineParams::validate() const
 		throw std::invalid_argument("support_plane.reach_sizes must be in [0.5, 2.5]");
 	positive(supportPlane.stepSigmas, "support_plane.step_sigmas");
 	positive(frontSide.depthSizes, "front_side.depth_sizes");
+	if (!(merge.conflictSigmas >= 0)) throw std::invalid_argument("merge.conflict_sigmas must be at least 0");
 	if (frontSide.columns < 1 || frontSide.columns > 64) throw std::invalid_argument("front_side.columns must be in [1, 64]");
 	if (!(frontSide.freeFraction >= 0 && frontSide.freeFraction < frontSide.blockedFraction &&
 		  frontSide.blockedFraction <= 1))

@@ -31,6 +31,9 @@ struct TagDetection
 	int pointsUsed = 0;  // raw map points on the tag plane used for the pose
 	double decodeMargin = 0;  // decoder's confidence (libapriltag decision margin / ArUco)
 	double patternFit = 0;  // correlation of the points with the tag bitmap, 0..1
+	/** Points the pattern fit correlated: how sure patternFit is (the merge
+	 *  compares two readings of one square by it). Not written out. */
+	int patternPoints = 0;
 	bool mirrored = false;  // decoded on the mirrored image (tag seen from "behind" its box)
 
 	Eigen::Vector3d position() const { return pose.translation(); }

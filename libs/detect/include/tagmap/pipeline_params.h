@@ -19,6 +19,7 @@
 #include "tagmap/point_spacing.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/front_side.h"
+#include "tagmap/merge_detections.h"
 #include "tagmap/support_plane.h"
 #include "tagmap/tag_decoder.h"
 
@@ -52,6 +53,7 @@ struct PipelineParams
 	PatternRefinementParams refinement;
 	SupportPlaneParams supportPlane;
 	FrontSideParams frontSide;
+	MergeParams merge;
 
 	/** Reads the keys present in `y` over the defaults; throws
 	 *  std::invalid_argument naming an unknown key or an invalid value. */
