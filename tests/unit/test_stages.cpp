@@ -85,21 +85,6 @@ TEST(CandidateFilter, PaperCriteria)
 	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::NotFlat);
 }
 
-TEST(CandidateFilter, SmallestTagInABoxFollowsCriterion1)
-{
-	// Criterion 1's upper bound turned round: a 1 m box (diagonal 1.414 m)
-	// holds no tag under 1.414 / (2 x 2) - 2 x band; a small box the
-	// smallest size asked for; a given size is the size.
-	CandidateFilterParams p;
-	OrientedBox box;
-	box.extent = {1.0, 1.0, 0.01};
-	EXPECT_NEAR(smallestTagIn(box, 0.02, p), std::sqrt(2.0) / 4 - 0.04, 1e-12);
-	box.extent = {0.2, 0.2, 0.01};
-	EXPECT_DOUBLE_EQ(smallestTagIn(box, 0.02, p), p.minTagSize);
-	p.tagSize = 0.3;
-	EXPECT_DOUBLE_EQ(smallestTagIn(box, 0.02, p), 0.3);
-}
-
 TEST(VoxelGrid, RowScanVisitsTheSameVoxelsAsFind)
 {
 	// A sparse random cloud: every row segment's voxels, scanned forward

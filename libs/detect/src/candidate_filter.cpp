@@ -21,13 +21,6 @@ std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, doub
 	return std::nullopt;
 }
 
-double smallestTagIn(const OrientedBox& box, double band, const CandidateFilterParams& p)
-{
-	if (p.tagSize > 0) return p.tagSize;
-	const double diag = std::hypot(box.extent.x(), box.extent.y());
-	return std::max(p.minTagSize, diag / (p.maxOversize * 2) - 2 * band);
-}
-
 std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p,
 									 const std::vector<double>& along)
 {

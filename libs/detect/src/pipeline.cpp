@@ -288,7 +288,7 @@ class CandidateDecoder
 			return out;
 		}
 		const PlaneImage plane =
-			renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane, smallestCell(box));
+			renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane, smallestCell());
 		out.report.verdict = Verdict::NoDecode;
 		if (plane.gray.empty())
 		{
@@ -361,12 +361,13 @@ class CandidateDecoder
 		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
 	}
 
-	// The smallest tag cell that could be in `box`: the image need not
-	// resolve anything finer (IntermediatePlaneParams::pixelsPerCell).
-	double smallestCell(const OrientedBox& box) const
+	// The smallest cell of any tag this detection can report: the image
+	// need not resolve anything finer (IntermediatePlaneParams::pixelsPerCell).
+	// Not the smallest the box's size implies: tags far smaller than their
+	// box are found too (a 0.17 m tag in a 3 m window of a sparse wall).
+	double smallestCell() const
 	{
-		const double side =
-			smallestTagIn(box, len_.candidateBand, sizes_) * (p_.tagSize > 0 ? 1 - kGivenSizeTolerance : 1.0);
+		const double side = p_.tagSize > 0 ? p_.tagSize * (1 - kGivenSizeTolerance) : sizes_.minTagSize;
 		return mostBorderCells_ > 0 ? side / mostBorderCells_ : 0;
 	}
 

@@ -42,11 +42,6 @@ struct CandidateFilterParams
  *  noise, DerivedLengths::planeNoise). */
 std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
 
-/** The smallest tag side criterion 1 lets `box` hold (rejectCandidate's
- *  upper bound turned round: a box may be up to maxOversize times the
- *  paper's 2a across), and never below minTagSize; tagSize when given. */
-double smallestTagIn(const OrientedBox& box, double band, const CandidateFilterParams& p);
-
 /** Square boxes of `box`'s width, half-overlapping along its length, for a
  *  box too elongated for a tag: a tag clustered together with an edge
  *  beside it (a pillar's corner, a shelf) lies in one of them. Up to

@@ -23,10 +23,10 @@ struct IntermediatePlaneParams
 	double pixelSpacings = 0.6;  // pixel edge, in local point spacings
 	double splatSpacings = 0.6;  // Gaussian splat sigma, in local point spacings
 	int maxImagePixels = 1200;  // image edge cap
-	/** The finest image a decode needs: the smallest cell a tag in the box
-	 *  could have (renderIntermediatePlane's `smallestCell`) this many
-	 *  pixels across. Dense maps (mm spacing) made images far sharper
-	 *  than any cell, and every image step costs per pixel. 0: no cap. */
+	/** The finest image a decode needs: the smallest cell of any tag the
+	 *  detection can report (renderIntermediatePlane's `smallestCell`) this
+	 *  many pixels across. Maps denser than that (mm spacing) made images
+	 *  sharper than any cell, and every image step costs per pixel. 0: no cap. */
 	double pixelsPerCell = 10;
 	double inlierSigmas = 3.0;  // plane inliers: |distance| <= this x residual RMS
 	int paddingPixels = 8;  // uniform border so tags at the edge still decode
