@@ -36,8 +36,9 @@ bool nestedIn(const TagDetection& inner, const TagDetection& outer)
 	return std::abs(q.x()) <= 0.5 * outer.size && std::abs(q.y()) <= 0.5 * outer.size &&
 		   std::abs(q.z()) <= 0.5 * outer.size;
 }
-}  // namespace
 
+// Whether fit `a` (correlation over its points) beats fit `b` by `sigmas`
+// standard errors of the difference of Fisher's z.
 bool clearlyBetterFit(const TagDetection& a, const TagDetection& b, double sigmas)
 {
 	if (a.patternPoints <= 3 || b.patternPoints <= 3) return a.patternFit > b.patternFit;
@@ -45,6 +46,7 @@ bool clearlyBetterFit(const TagDetection& a, const TagDetection& b, double sigma
 	const double se = std::sqrt(1.0 / (a.patternPoints - 3) + 1.0 / (b.patternPoints - 3));
 	return z(a.patternFit) - z(b.patternFit) > sigmas * se;
 }
+}  // namespace
 
 std::vector<TagDetection> mergeDetections(std::vector<TagDetection> found, const MergeParams& p)
 {

@@ -233,13 +233,18 @@ std::vector<std::string> familiesAsked(const PipelineParams& p)
 	return p.families.empty() ? parseFamilyList("") : p.families;
 }
 
-// The most cells across a tag's border square of any of `families`: a
-// tag's size spans that many of its cells (aruco_7x7: 9).
-int mostCellsAcross(const std::vector<std::string>& families)
+// The smallest cell of any tag a detection can report: the smallest size
+// asked for over the most cells across a border square of the families
+// decoded (aruco_7x7: 9); 0 when none. The images need not resolve anything
+// finer (IntermediatePlaneParams::pixelsPerCell). Not the smallest the
+// box's size implies: tags far smaller than their box are found too (a
+// 0.17 m tag in a 3 m window of a sparse wall).
+double smallestReportableCell(const PipelineParams& p, const std::vector<std::string>& families)
 {
 	int most = 0;
 	for (const std::string& f : families) most = std::max(most, renderTagBitmap(f, 0).borderCells);
-	return most;
+	const double side = p.tagSize > 0 ? p.tagSize * (1 - kGivenSizeTolerance) : p.candidates.minTagSize;
+	return most > 0 ? side / most : 0;
 }
 
 // The orientations each quad is read in: 4 rotations, each also mirrored.
@@ -264,7 +269,7 @@ class CandidateDecoder
 		  readOrientations_(readOrientations(p)),
 		  anyFamilyDecoded_(!decodedFamilies.empty()),
 		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies))),
-		  mostBorderCells_(mostCellsAcross(decodedFamilies))
+		  smallestCell_(smallestReportableCell(p, decodedFamilies))
 	{
 	}
 
@@ -288,7 +293,7 @@ class CandidateDecoder
 			return out;
 		}
 		const PlaneImage plane =
-			renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane, smallestCell());
+			renderIntermediatePlane(m_.xs, m_.ys, m_.zs, m_.is, pts, box, len_.spacing, p_.plane, smallestCell_);
 		out.report.verdict = Verdict::NoDecode;
 		if (plane.gray.empty())
 		{
@@ -361,16 +366,6 @@ class CandidateDecoder
 		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
 	}
 
-	// The smallest cell of any tag this detection can report: the image
-	// need not resolve anything finer (IntermediatePlaneParams::pixelsPerCell).
-	// Not the smallest the box's size implies: tags far smaller than their
-	// box are found too (a 0.17 m tag in a 3 m window of a sparse wall).
-	double smallestCell() const
-	{
-		const double side = p_.tagSize > 0 ? p_.tagSize * (1 - kGivenSizeTolerance) : sizes_.minTagSize;
-		return mostBorderCells_ > 0 ? side / mostBorderCells_ : 0;
-	}
-
 	bool sizeAsked(double measured) const
 	{
 		return p_.tagSize > 0 ? std::abs(measured / p_.tagSize - 1) <= kGivenSizeTolerance
@@ -420,7 +415,7 @@ class CandidateDecoder
 	const int readOrientations_;
 	const bool anyFamilyDecoded_;
 	const size_t fewestPoints_;  // fewestCellsToRead() of the families decoded
-	const int mostBorderCells_;  // mostCellsAcross() of the families decoded
+	const double smallestCell_;  // smallestReportableCell(): the finest the images need resolve
 };
 
 // Gather, render, decode, solve: independent per candidate, on each

@@ -29,8 +29,4 @@ struct MergeParams
  *  The result is sorted by family, id, then position (deterministic). */
 std::vector<TagDetection> mergeDetections(std::vector<TagDetection> found, const MergeParams& p = {});
 
-/** Whether fit `a` (correlation over its points) beats fit `b` by
- *  `sigmas` standard errors of the difference of Fisher's z. */
-bool clearlyBetterFit(const TagDetection& a, const TagDetection& b, double sigmas);
-
 }  // namespace tagmap
