@@ -68,6 +68,9 @@ int runObserve(int argc, char** argv)
 		if (quiet) return 0;
 		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s -> %s\n", report.scans,
 					report.scansWithTags, report.tagsSeen, report.seconds, out.c_str());
+		std::string perTag;
+		for (const auto& [tag, scans] : report.scansPerTag) perTag += " " + tag + " (" + std::to_string(scans) + ")";
+		std::printf("scans per tag:%s\n", perTag.empty() ? " none" : perTag.c_str());
 		return 0;
 	});
 }

@@ -9,6 +9,7 @@
 #include "tagmap/io/point_cloud_io.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/sim_outputs.h"
+#include "tagmap/sim/sim_rawlog.h"
 #include "tagmap/sim/simulate.h"
 #include "tagmap/tags_json.h"
 
@@ -52,4 +53,65 @@ TEST(SimOutputs, FilesReadBackConsistently)
 		EXPECT_EQ(lines, out.frames.size()) << f;
 	}
 	std::filesystem::remove_all(dir);
+}
+
+// A sensor mounted on a robot base (run `mount`): the rawlog's odometry moves
+// the base along the waypoints and every scan's sensor pose is the mount, so
+// base (+) sensorPose is the true sensor pose a localizer must recover.
+TEST(SimOutputs, MountedSensorRawlogHasTheBaseOdometryAndTheMount)
+{
+	const auto scene = sim::parseScene(R"(
+name: mounted
+objects:
+  - {name: wall, type: plane, position: [6, 0, 1], normal: [-1, 0, 0], size: [8, 3], reflectivity: 0.5}
+sensors:
+  - {name: s, type: spinning, beams: 16, vertical_fov_deg: [-15, 15], columns: 256, rev_per_second: 10}
+runs:
+  - name: drive
+    sensor: s
+    mount: {position: [0.3, 0.15, 1.0], rpy_deg: [0, 0, 90]}
+    waypoints:
+      - {t: 0, position: [0, 0, 0], rpy_deg: [0, 0, 0]}
+      - {t: 1, position: [1, 0, 0], rpy_deg: [0, 0, 20]}
+)",
+										 "mounted");
+	sim::SimOptions opt;
+	const auto out = sim::simulate(scene, opt);
+	ASSERT_GE(out.frames.size(), 5u);
+	const mrpt::obs::CRawlog log = sim::toRawlog(out);
+	mrpt::poses::CPose2D odometry;
+	size_t frame = 0;
+	for (size_t i = 0; i < log.size(); i++)
+	{
+		if (log.getType(i) == mrpt::obs::CRawlog::etActionCollection)
+		{
+			const auto move = log.getAsAction(i)->getBestMovementEstimation();
+			ASSERT_TRUE(move);
+			odometry = odometry + move->poseChange->getMeanVal();
+			continue;
+		}
+		const auto sf = log.getAsObservations(i);
+		ASSERT_EQ(sf->size(), 1u);
+		mrpt::poses::CPose3D sensorOnBase;
+		sf->getObservationByIndex(0)->getSensorPose(sensorOnBase);
+		EXPECT_NEAR(sensorOnBase.x(), 0.3, 1e-9);
+		EXPECT_NEAR(sensorOnBase.y(), 0.15, 1e-9);
+		EXPECT_NEAR(sensorOnBase.z(), 1.0, 1e-9);
+		EXPECT_NEAR(sensorOnBase.yaw(), M_PI / 2, 1e-9);
+		// The odometry is the base's motion since the first frame (up to the
+		// scene's default drift, mm over 1 m), not the sensor's, which swings
+		// 0.3 m ahead of it as the base turns.
+		const auto planarBase = [&](size_t k) {
+			const Eigen::Isometry3d b = out.frames[k].truePose * out.frames[k].mount.inverse();
+			EXPECT_NEAR(b.translation().z(), 0.0, 1e-9);
+			return mrpt::poses::CPose2D(b.translation().x(), b.translation().y(),
+										std::atan2(b.linear()(1, 0), b.linear()(0, 0)));
+		};
+		const mrpt::poses::CPose2D baseMotion = planarBase(frame) - planarBase(0);
+		EXPECT_NEAR(odometry.x(), baseMotion.x(), 0.01);
+		EXPECT_NEAR(odometry.y(), baseMotion.y(), 0.01);
+		EXPECT_NEAR(odometry.phi(), baseMotion.phi(), 0.01);
+		frame++;
+	}
+	EXPECT_EQ(frame, out.frames.size());
 }

@@ -42,7 +42,7 @@ void castBlock(const Block& b, const Frame& f, const ScanRun& run, const SensorS
 	for (size_t i = b.begin; i < b.end; i++)
 	{
 		m.pattern->ray(f.clock, i, dirS, dt);
-		const Eigen::Isometry3d T = f.moving ? interpolatePose(run.waypoints, f.t0 + dt) : f.truePose;
+		const Eigen::Isometry3d T = f.moving ? sensorPoseAt(run, f.t0 + dt) : f.truePose;
 		const Eigen::Vector3d o = T.translation();
 		const Eigen::Vector3d d = T.linear() * dirS;  // as the encoders report it
 		const Eigen::Vector3d beam = m.jitter->apply(d, rng);  // where the pulse really goes

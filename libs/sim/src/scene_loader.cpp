@@ -168,7 +168,7 @@ TagSpec parseTag(const YamlReader& r)
 
 ScanRun parseRun(const YamlReader& r, const std::vector<SensorSpec>& sensors)
 {
-	r.allowKeys({"name", "sensor", "waypoints", "duration", "drift_scale", "deskew_residual"});
+	r.allowKeys({"name", "sensor", "waypoints", "duration", "drift_scale", "deskew_residual", "mount"});
 	ScanRun run;
 	run.name = r.text("name", r.path());
 	const std::string sensor = r.text("sensor");
@@ -193,6 +193,12 @@ ScanRun parseRun(const YamlReader& r, const std::vector<SensorSpec>& sensors)
 	run.driftScale = r.positive("drift_scale", 1, true);
 	run.deskewResidual = r.number("deskew_residual", 0);
 	if (run.deskewResidual < 0 || run.deskewResidual > 1) r.child("deskew_residual").fail("must be within 0..1");
+	if (r.has("mount"))
+	{
+		const YamlReader m = r.child("mount");
+		m.allowKeys({"position", "rpy_deg", "quaternion"});
+		run.mount = parsePose(m);
+	}
 	return run;
 }
 

@@ -54,8 +54,9 @@ mrpt::obs::CRawlog toRawlog(const SimulationOutput& out, const RawlogOptions& op
 	for (size_t k = 0; k < out.frames.size(); k++)
 	{
 		const FrameData& fd = out.frames[k];
-		const mrpt::poses::CPose2D robot = planar(fd.truePose);
-		const mrpt::poses::CPose2D odometry = planar(fd.driftedPose);
+		// The carrier (robot base) moves; the sensor rides on it at fd.mount.
+		const mrpt::poses::CPose2D robot = planar(fd.truePose * fd.mount.inverse());
+		const mrpt::poses::CPose2D odometry = planar(fd.driftedPose * fd.mount.inverse());
 
 		mrpt::obs::CActionRobotMovement2D move;
 		move.timestamp = mrpt::Clock::fromDouble(fd.stamp);

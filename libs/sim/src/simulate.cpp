@@ -144,6 +144,7 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const
 		fd.duration = frames[k].duration;
 		fd.truePose = frames[k].truePose;
 		fd.driftedPose = drifted[k];
+		fd.mount = scene.runs[frames[k].run].mount;
 		fd.firstPoint = first;
 		fd.pointCount = cast.frameCounts[k];
 		first += fd.pointCount;

@@ -23,6 +23,8 @@ Eigen::Isometry3d interpolatePose(const std::vector<Waypoint>& w, double t)
 	return T;
 }
 
+Eigen::Isometry3d sensorPoseAt(const ScanRun& run, double t) { return interpolatePose(run.waypoints, t) * run.mount; }
+
 double framePeriod(const SensorSpec& s)
 {
 	return s.kind == SensorKind::Spinning ? 1.0 / s.spinning.revPerSecond : s.framePeriod;
@@ -46,7 +48,7 @@ std::vector<Frame> scheduleFrames(const Scene& scene)
 			{
 				f.t0 = f.tRef = w.t;
 				f.clock = clock;
-				f.truePose = w.pose;
+				f.truePose = w.pose * run.mount;
 				f.rays = pattern->rayCount(0);
 				frames.push_back(f);
 				clock += 1.0;  // a station sweep takes time; keeps frame stamps increasing
@@ -63,9 +65,9 @@ std::vector<Frame> scheduleFrames(const Scene& scene)
 			f.duration = std::min(period, start + length - f.t0);
 			f.clock = clock + k * period;
 			f.tRef = f.t0 + 0.5 * f.duration;
-			f.truePose = interpolatePose(run.waypoints, f.tRef);
-			const Eigen::Isometry3d a = interpolatePose(run.waypoints, f.t0);
-			const Eigen::Isometry3d b = interpolatePose(run.waypoints, f.t0 + f.duration);
+			f.truePose = sensorPoseAt(run, f.tRef);
+			const Eigen::Isometry3d a = sensorPoseAt(run, f.t0);
+			const Eigen::Isometry3d b = sensorPoseAt(run, f.t0 + f.duration);
 			f.moving = !a.isApprox(b, 1e-12);
 			f.rays = pattern->rayCount(f.duration);
 			frames.push_back(f);

@@ -6,6 +6,9 @@
 
 #include <mrpt/obs/CRawlog.h>
 
+#include <map>
+#include <string>
+
 #include "tagmap/count_progress.h"
 #include "tagmap/localize/beacon_ranges.h"
 #include "tagmap/pipeline.h"
@@ -34,6 +37,9 @@ struct ObserveReport
 	size_t scansWithTags = 0;
 	size_t tagsSeen = 0;  // sum over scans
 	size_t meanPointsDetected = 0;  // points per detection (the window's scans merged)
+	/** Scans in which each tag ("family:id") was seen: is every tag of the
+	 *  site observed somewhere along the run? */
+	std::map<std::string, size_t> scansPerTag;
 	double seconds = 0;
 };
 

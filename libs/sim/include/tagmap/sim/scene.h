@@ -65,7 +65,7 @@ struct TagSpec
 struct Waypoint
 {
 	double t = 0;  // seconds
-	Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // world <- sensor
+	Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // world <- carrier (the sensor unless mounted)
 };
 
 /** One pass of one sensor: either stations (a terrestrial scanner, one sweep
@@ -81,6 +81,11 @@ struct ScanRun
 	/** Fraction of the intra-frame motion that deskewing fails to remove
 	 *  (0 = perfect motion compensation, 1 = none) -> motion blur. */
 	double deskewResidual = 0;
+	/** The sensor on its carrier (`mount`: a robot base): the waypoints
+	 *  move the carrier, the sensor rides at waypoint * mount. The rawlog's
+	 *  odometry is then the carrier's and each scan's sensor pose this mount,
+	 *  as a robot's driver writes them. Identity: the waypoints are the sensor. */
+	Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
 };
 
 /** SLAM-like drift of the poses used to merge frames: a random walk whose

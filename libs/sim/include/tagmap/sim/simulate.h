@@ -52,6 +52,7 @@ struct FrameData
 	double duration = 0;
 	Eigen::Isometry3d truePose = Eigen::Isometry3d::Identity();  // world <- sensor
 	Eigen::Isometry3d driftedPose = Eigen::Isometry3d::Identity();  // as a SLAM map would have it
+	Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // carrier <- sensor (ScanRun::mount)
 	size_t firstPoint = 0, pointCount = 0;  // range in SimulationOutput::points
 };
 

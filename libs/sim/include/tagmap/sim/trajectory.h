@@ -13,6 +13,9 @@ namespace tagmap::sim
  *  clamped to the first/last waypoint. */
 Eigen::Isometry3d interpolatePose(const std::vector<Waypoint>& waypoints, double t);
 
+/** The run's sensor at run-relative time t: the carrier's pose, then the mount. */
+Eigen::Isometry3d sensorPoseAt(const ScanRun& run, double t);
+
 struct Frame
 {
 	int run = 0;
