@@ -341,7 +341,7 @@ class CandidateDecoder
 				continue;
 			}
 			out.report.verdict = Verdict::Decoded;
-			if (keepImages_) out.report.decodedLabels.push_back(t.family + ":" + std::to_string(t.id));
+			if (keepImages_) out.report.decodedLabels.push_back(tagLabel(t.family, t.id));
 			out.tags.push_back(std::move(t));
 		}
 		return !out.tags.empty();

@@ -63,7 +63,7 @@ class Observer
 		report_.scans++;
 		report_.scansWithTags += !tags->tags.empty();
 		report_.tagsSeen += tags->tags.size();
-		for (const TagDetection& t : tags->tags) report_.scansPerTag[t.family + ":" + std::to_string(t.id)]++;
+		for (const TagDetection& t : tags->tags) report_.scansPerTag[tagLabel(t.family, t.id)]++;
 		report_.meanPointsDetected = pointsDetected_ / report_.scans;
 		if (progress_) progress_(report_.scans, total_);
 		return {ranges, tags};

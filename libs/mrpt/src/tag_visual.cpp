@@ -45,7 +45,7 @@ double drawnHalfSide(const TagDetection& tag)
 mrpt::opengl::CSetOfObjects::Ptr makeTagVisual(const TagDetection& tag, const TagVisualParams& params)
 {
 	auto out = mrpt::opengl::CSetOfObjects::Create();
-	out->setName(tag.family + ":" + std::to_string(tag.id));
+	out->setName(tagLabel(tag.family, tag.id));
 
 	Eigen::Matrix4d T = tag.pose.matrix();
 	out->setPose(mrpt::poses::CPose3D::FromHomogeneousMatrix(mrpt::math::CMatrixDouble44(T)));

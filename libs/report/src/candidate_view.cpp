@@ -29,7 +29,7 @@ cv::Mat renderCandidateView(const CandidateReport& c, const CandidateViewParams&
 	const cv::Scalar accepted(60, 200, 60), rejected(0, 140, 255);
 	for (const DecodedTag2D& d : c.decoded)
 	{
-		const std::string label = d.family + ":" + std::to_string(d.id);
+		const std::string label = tagLabel(d.family, d.id);
 		const bool ok = std::find(c.decodedLabels.begin(), c.decodedLabels.end(), label) != c.decodedLabels.end();
 		const cv::Scalar colour = ok ? accepted : rejected;
 		std::vector<cv::Point> quad;

@@ -137,7 +137,7 @@ void drawTags(cv::Mat& img, const ViewFrame& f, const std::vector<TagDetection>&
 		// Small tags on big maps are a few pixels: ring them so they are seen.
 		const double edge = cv::norm(poly[0] - poly[2]);
 		if (edge < 24) cv::circle(img, centre, 12, outline, 2, cv::LINE_AA);
-		const std::string label = t.family + ":" + std::to_string(t.id);
+		const std::string label = tagLabel(t.family, t.id);
 		const cv::Point at = centre + cv::Point(static_cast<int>(std::max(14.0, edge / 2)), -6);
 		cv::putText(img, label, at, cv::FONT_HERSHEY_SIMPLEX, font, halo, 4, cv::LINE_AA);
 		cv::putText(img, label, at, cv::FONT_HERSHEY_SIMPLEX, font, text, 1, cv::LINE_AA);

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tagmap/sim/rng.h"
+#include "tagmap/tag_detection.h"
 #include "tagmap/tag_family.h"
 
 namespace tagmap::sim
@@ -51,7 +52,7 @@ SceneObject makeTagPaper(const TagSpec& spec, const Eigen::Isometry3d& printedPo
 	r.halfW = r.halfH = extent + spec.margin;
 
 	SceneObject o;
-	o.name = spec.family + ":" + std::to_string(spec.id);
+	o.name = tagLabel(spec.family, spec.id);
 	o.kind = ObjectKind::Tag;
 	o.faces.push_back(std::move(r));
 	if (hasBoard(spec))

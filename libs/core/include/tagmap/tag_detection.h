@@ -40,6 +40,9 @@ struct TagDetection
 	Eigen::Quaterniond quaternion() const { return Eigen::Quaterniond(pose.linear()); }
 };
 
+/** "family:id", the label a tag goes by in reports, views and summaries. */
+inline std::string tagLabel(const std::string& family, int id) { return family + ":" + std::to_string(id); }
+
 /** The 4 corners of a tag of edge `size` in its own frame, in vertex order. */
 std::array<Eigen::Vector3d, 4> tagModelCorners(double size);
 
