@@ -210,7 +210,10 @@ TEST(Scenes, GeoreferencedMapsGiveTheShiftedTags)
 	// the same but for the double rounding of adding the shift back (1e-9 m
 	// at 5e6 m); the chosen origin differs from the shift by the
 	// map's rounded median, and the pipeline's float arithmetic on a
-	// translated map differs a little.
+	// translated map differs a little. LAS stores millimetre steps: every
+	// point moves by up to 0.5 mm, and the occluded tag 7, whose error
+	// against the truth is several mm, moves by up to 1.4 mm (measured).
+	// A lost float64 digit would show as centimetres.
 	io::LoadParams asShift;
 	asShift.fixedOrigin = true;
 	asShift.origin = shift;
@@ -220,7 +223,7 @@ TEST(Scenes, GeoreferencedMapsGiveTheShiftedTags)
 			  << " mm\n";
 	EXPECT_LT(pcd, 0.001);
 	EXPECT_LT(pcdAtShift, 1e-8);
-	EXPECT_LT(lasError, 0.001);
+	EXPECT_LT(lasError, 0.002);
 }
 
 TEST(Scenes, FarOutliersChangeNothing)

@@ -20,6 +20,7 @@ struct WallScene
 	double spacing = 0.006;  // metres between samples
 	double wall = 0.8;  // wall edge, metres
 	double noise = 0.001;  // metres, along the normal
+	double intensityNoise = 0.02;  // reflectivity units (paper 0.85, ink 0.06, wall 0.5)
 	double intensityScale = 1.0;
 	Eigen::Isometry3d T_G_wall = Eigen::Isometry3d::Identity();  // wall plane is its z = 0
 	double tagRotation = 0.0;  // in-plane, radians
@@ -47,7 +48,7 @@ inline mrpt::maps::CPointsMapXYZI makeWall(const WallScene& s, TagDetection& tru
 			double refl = 0.5;  // wall
 			if (std::abs(tx) < 0.5 * s.size + 2 * cell && std::abs(ty) < 0.5 * s.size + 2 * cell) refl = 0.85;  // paper
 			if (row >= 0 && col >= 0 && row < bm.cells && col < bm.cells) refl = bm.at(row, col) ? 0.85 : 0.06;
-			const double I = (refl + 0.02 * n01(rng)) * s.intensityScale;
+			const double I = (refl + s.intensityNoise * n01(rng)) * s.intensityScale;
 			const Eigen::Vector3d p = s.T_G_wall * Eigen::Vector3d(px, py, s.noise * n01(rng));
 			// insertPointRGB stores the R channel as the intensity, unclamped.
 			map.insertPointRGB(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()),

@@ -120,6 +120,31 @@ TEST(Pipeline, IntensityScaleDoesNotChangeTheResult)
 	}
 }
 
+// Range noise thicker than the gradient's radius and strong intensity
+// noise: the wall's noise passes the gradient's fixed bars here and there
+// and clusters with the tag into one box too large for the size asked for.
+// Without the points chance explains, the tag's edges stand apart.
+TEST(Pipeline, TagOnAWallNoisierThanTheRadiusIsFound)
+{
+	WallScene s;
+	s.spacing = 0.004;
+	s.noise = 0.015;
+	s.intensityNoise = 0.12;
+	s.wall = 1.2;
+	s.T_G_wall = wallPose(0.3, M_PI / 2, Eigen::Vector3d(3, 1, 1));
+	TagDetection truth;
+	const auto map = makeWall(s, truth);
+	PipelineParams p;
+	p.tagSize = s.size;
+	const Detections found = Pipeline(p).detect(map);
+	for (const StageReport& st : found.stages)
+		if (st.name == "intensity_gradient" || st.name == "oversized_split")
+			std::printf("%s: %zu in, %zu out\n", st.name.c_str(), st.itemsIn, st.itemsOut);
+	ASSERT_EQ(found.tags.size(), 1u);
+	EXPECT_EQ(found.tags[0].id, s.id);
+	EXPECT_LT(maxCornerError(found.tags[0], truth), 0.01);
+}
+
 TEST(Pipeline, PlainWallHasNoTags)
 {
 	WallScene s;

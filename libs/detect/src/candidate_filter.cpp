@@ -6,16 +6,21 @@
 
 namespace tagmap
 {
+bool tooLargeForATag(const OrientedBox& box, double band, const CandidateFilterParams& p)
+{
+	const double aMax = p.tagSize > 0 ? p.tagSize : p.maxTagSize;
+	return std::hypot(box.extent.x(), box.extent.y()) > p.maxOversize * 2 * (aMax + 2 * band);
+}
+
 std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p)
 {
 	const double l = box.extent.x(), w = box.extent.y();
 	const double h = box.thickness > 0 ? box.thickness : box.extent.z();
 	const double aMin = p.tagSize > 0 ? p.tagSize : p.minTagSize;
-	const double aMax = p.tagSize > 0 ? p.tagSize : p.maxTagSize;
 	// Paper's criterion 1 in the tag plane: a*sqrt(2) <= diag <= 2a; the
 	// kept edge band widens the box by up to `band` on every side.
 	const double diag = std::hypot(l, w);
-	if (diag < std::sqrt(2.0) * aMin * (1 - p.shortfall) || diag > p.maxOversize * 2 * (aMax + 2 * band)) return Verdict::Size;
+	if (diag < std::sqrt(2.0) * aMin * (1 - p.shortfall) || tooLargeForATag(box, band, p)) return Verdict::Size;
 	if (w <= 0 || l / w > p.maxAspect) return Verdict::Squareness;
 	if (h > p.maxFlatness * w + 2 * noise) return Verdict::NotFlat;
 	return std::nullopt;

@@ -1,6 +1,7 @@
 #include "tagmap/pattern_refinement.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
@@ -33,9 +34,6 @@ constexpr size_t kMinPoints = 20;
  *  from drifting or badly deskewed views smears a cell over about a third,
  *  or about two thirds, of its neighbour (the motion-blurred parking tags). */
 constexpr double kSmearedBlurCells[] = {0.35, 0.7};
-/** Points are taken up to this fraction of the half grid from the centre:
- *  a little beyond it, as the decoded pose may be off by a few percent. */
-constexpr double kReachMargin = 1.05;
 /** Levenberg-Marquardt: damping at the start, its floor, how it falls after
  *  a step that lowered the cost and grows after one that did not, and how
  *  many damped steps are tried per iteration before the fit stops (6
@@ -70,18 +68,22 @@ struct PatternModel
 		cv::GaussianBlur(img, img, cv::Size(), s, s, cv::BORDER_REPLICATE);
 	}
 
-	/** Value at tag-frame (x, y) in cells (x right, y up from the centre); false outside the grid. */
-	bool sample(double xc, double yc, double& out) const
+	/** Value at tag-frame (x, y) in cells (x right, y up from the centre).
+	 *  Beyond the grid it is the grid's edge (the white quiet zone, and the
+	 *  paper around it): a point that crosses the grid's edge during the fit
+	 *  then changes the cost continuously. Dropping such points instead
+	 *  made the cost jump by a point's whole residual, larger than the
+	 *  change a step of a few hundredths of a degree makes, and the fit
+	 *  stopped at its start, up to 0.3 deg off in-plane. */
+	double sample(double xc, double yc) const
 	{
-		const double col = (xc + cellsToCentre) * kPxPerCell - 0.5;
-		const double row = (-yc + cellsToCentre) * kPxPerCell - 0.5;
-		if (col < 0 || row < 0 || col >= img.cols - 1 || row >= img.rows - 1) return false;
-		const int c0 = static_cast<int>(col), r0 = static_cast<int>(row);
+		const double col = std::clamp((xc + cellsToCentre) * kPxPerCell - 0.5, 0.0, img.cols - 1.000001);
+		const double row = std::clamp((-yc + cellsToCentre) * kPxPerCell - 0.5, 0.0, img.rows - 1.000001);
+		const int c0 = std::min(static_cast<int>(col), img.cols - 2), r0 = std::min(static_cast<int>(row), img.rows - 2);
 		const double fc = col - c0, fr = row - r0;
 		const float* a = img.ptr<float>(r0);
 		const float* b = img.ptr<float>(r0 + 1);
-		out = (1 - fr) * ((1 - fc) * a[c0] + fc * a[c0 + 1]) + fr * ((1 - fc) * b[c0] + fc * b[c0 + 1]);
-		return true;
+		return (1 - fr) * ((1 - fc) * a[c0] + fc * a[c0 + 1]) + fr * ((1 - fc) * b[c0] + fc * b[c0 + 1]);
 	}
 };
 
@@ -119,7 +121,9 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	const Eigen::Isometry3d T0 = t.pose;
 	std::vector<Eigen::Vector2d> q;
 	std::vector<double> I;
-	const double reach = 0.5 * bm.cells * cell0 * kReachMargin;
+	// The points on the grid at the decoded pose: the same set throughout
+	// the fit (see PatternModel::sample), so that the cost is continuous.
+	const double reach = 0.5 * bm.cells * cell0;
 	for (uint32_t i : plane.inliers)
 	{
 		const Eigen::Vector3d l = T0.inverse() * Eigen::Vector3d(xs[i], ys[i], zs[i]);
@@ -134,28 +138,22 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	const PatternModel* chosen = model;
 	auto evaluate = [&](const FitState& s, bool wantResiduals) {
 		Evaluation e;
-		// Always one residual per point (0 for a point off the grid), even
-		// when too few are left to judge: the Jacobian subtracts these vectors.
-		if (wantResiduals) e.residuals = Eigen::VectorXd::Zero(static_cast<long>(q.size()));
 		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
-		std::vector<double> m(q.size(), -1);
+		std::vector<double> m(q.size());
 		double sm = 0, sI = 0, smm = 0, smI = 0, sII = 0;
 		for (size_t k = 0; k < q.size(); k++)
 		{
 			// Point in the refined tag frame: inverse of (rotate by theta, then shift).
 			const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
 			const double xr = c * x + sn * y, yr = -sn * x + c * y;
-			double v;
-			if (!model->sample(xr / cell, yr / cell, v)) continue;
-			m[k] = v;
+			const double v = m[k] = model->sample(xr / cell, yr / cell);
 			sm += v;
 			sI += I[k];
 			smm += v * v;
 			smI += v * I[k];
 			sII += I[k] * I[k];
-			e.used++;
 		}
-		if (e.used < kMinPoints) return e;
+		e.used = q.size();
 		const double n = static_cast<double>(e.used);
 		const double vm = smm / n - (sm / n) * (sm / n), vI = sII / n - (sI / n) * (sI / n);
 		const double cov = smI / n - (sm / n) * (sI / n);
@@ -164,9 +162,8 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		e.cost = std::max(0.0, vI - gain * cov);
 		if (wantResiduals)
 		{
-			// Points leaving the grid get the mean residual 0: keeps the vector length fixed.
-			for (size_t k = 0; k < q.size(); k++)
-				if (m[k] >= 0) e.residuals(static_cast<long>(k)) = I[k] - (offset + gain * m[k]);
+			e.residuals.resize(static_cast<long>(q.size()));
+			for (size_t k = 0; k < q.size(); k++) e.residuals(static_cast<long>(k)) = I[k] - (offset + gain * m[k]);
 		}
 		return e;
 	};
@@ -180,11 +177,6 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		if (best.used == 0 || e.correlation > best.correlation) best = e, chosen = &candidate;
 	}
 	model = chosen;
-	if (best.used < kMinPoints)
-	{
-		t.patternFit = 0;
-		return false;
-	}
 	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
 	// logScale).
 	auto jacobian = [&](const FitState& at, const Eigen::VectorXd& r0, int n) {
@@ -220,7 +212,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 				cand.dy += delta(2);
 				if (nParams == 4) cand.logScale += delta(3);
 				Evaluation e = evaluate(cand, true);
-				if (e.used >= kMinPoints && e.cost < best.cost)
+				if (e.cost < best.cost)
 				{
 					s = cand;
 					best = e;
@@ -232,9 +224,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 			}
 			if (!improved) break;
 		}
-		// In-plane covariance from the Gauss-Newton normal equations (best
-		// always has kMinPoints here).
-		if (best.used >= kMinPoints)
+		// In-plane covariance from the Gauss-Newton normal equations.
 		{
 			const double sigma2 = best.cost;
 			const Eigen::MatrixXd J = jacobian(s, best.residuals, 3);

@@ -136,6 +136,39 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 	return clusters.size();
 }
 
+// The candidate filter as asked: --tag-size, when given, is the only size.
+CandidateFilterParams filterParams(const PipelineParams& p)
+{
+	CandidateFilterParams cf = p.candidates;
+	if (p.tagSize > 0) cf.tagSize = p.tagSize;
+	return cf;
+}
+
+// A cluster too large for any tag asked for may be a plain wall whose noise
+// passed the gradient's fixed bars (range noise thicker than r, strong
+// intensity noise), with a tag on it. Its points that beat chance
+// (IntensityGradientResult::keptByChance) are clustered again: the tag's
+// edges then stand apart. Only such clusters, which yield nothing as they
+// are, so no candidate of today is lost. Adds to `clusters`; returns the
+// points re-clustered.
+size_t splitOversizedClusters(const MapView& m, const std::vector<uint32_t>& keptByChance, double spacing,
+							  const DerivedLengths& len, const PipelineParams& p, std::vector<Cluster>& clusters)
+{
+	if (keptByChance.empty()) return 0;
+	const CandidateFilterParams cf = filterParams(p);
+	std::vector<uint32_t> significant;
+	for (size_t k = 0, before = clusters.size(); k < before; k++)
+	{
+		if (!tooLargeForATag(clusters[k].box, len.candidateBand, cf)) continue;
+		for (uint32_t i : clusters[k].points)
+			if (!std::binary_search(keptByChance.begin(), keptByChance.end(), i)) significant.push_back(i);
+	}
+	std::sort(significant.begin(), significant.end());
+	significant.erase(std::unique(significant.begin(), significant.end()), significant.end());
+	addClusters(m, significant, 1.0, spacing, p.clustering, clusters);
+	return significant.size();
+}
+
 // Density levels: where the map is sparser than its median (far from the
 // sensor, a fast pass), a point has too few neighbours within r to fit a
 // gradient. Those points alone are run again at 3x the radius and clustered
@@ -162,14 +195,6 @@ size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, cons
 		addClusters(m, level.keptPoints, levelScale, len.spacing, p.clustering, clusters);
 	}
 	return kept;
-}
-
-// The candidate filter as asked: --tag-size, when given, is the only size.
-CandidateFilterParams filterParams(const PipelineParams& p)
-{
-	CandidateFilterParams cf = p.candidates;
-	if (p.tagSize > 0) cf.tagSize = p.tagSize;
-	return cf;
 }
 
 // A candidate: the box to gather around, and the report it fills in.
@@ -497,6 +522,9 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	std::vector<Cluster> clusters;
 	stage.run("clustering", edges.keptPoints.size(), [&] {
 		return addClusters(m, edges.keptPoints, 1.0, spacing, params_.clustering, clusters);
+	});
+	stage.run("oversized_split", edges.keptByChance.size(), [&] {
+		return splitOversizedClusters(m, edges.keptByChance, spacing, len, params_, clusters);
 	});
 	stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
 		return clusterSparseLevels(m, std::move(edges), len, params_, threads, clusters);

@@ -42,6 +42,10 @@ struct CandidateFilterParams
  *  noise, DerivedLengths::planeNoise). */
 std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p);
 
+/** Criterion 1's upper bound alone: the box is too large to hold any tag
+ *  asked for, even printed on a board (a rejectCandidate() Verdict::Size). */
+bool tooLargeForATag(const OrientedBox& box, double band, const CandidateFilterParams& p);
+
 /** Square boxes of `box`'s width, half-overlapping along its length, for a
  *  box too elongated for a tag: a tag clustered together with an edge
  *  beside it (a pillar's corner, a shelf) lies in one of them. Up to

@@ -39,6 +39,13 @@ struct IntensityGradientResult
 	 *  there than its median (far from the sensor, a fast pass). The
 	 *  pipeline runs them again at a larger radius. */
 	std::vector<uint32_t> sparsePoints;
+	/** The kept points whose fit pure noise would match with this many
+	 *  neighbours, 1 time in 1000 (ascending; a subset of keptPoints). With
+	 *  range noise thicker than r (2 cm on a dense scan) or strong
+	 *  intensity noise, a plain wall passes the fixed bars and clusters
+	 *  with the tag on it into one box metres wide; without these points
+	 *  the tag's own edges stand apart (splitOversizedClusters). */
+	std::vector<uint32_t> keptByChance;
 };
 
 /** `radius`: the neighbourhood r (DerivedLengths::gradientRadius); `grid`
