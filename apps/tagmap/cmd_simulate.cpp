@@ -101,7 +101,7 @@ int runSimulate(int argc, char** argv)
 		std::cout << "scene " << out.sceneName << ": " << out.map.size() << " points from " << out.frames.size()
 				  << " frames, " << out.truth.size() << " tags";
 		for (size_t i = 0; i < out.truth.size(); i++)
-			std::cout << (i ? ", " : " (") << out.truth[i].family << ":" << out.truth[i].id << " " << out.tagPoints[i]
+			std::cout << (i ? ", " : " (") << out.truth[i].family << ":" << out.truth[i].id << " " << out.tagSightings[i].points
 					  << " pts" << (i + 1 == out.truth.size() ? ")" : "");
 		std::cout << ", " << out.seconds << " s -> " << a.get("--out") << "\n";
 		return 0;

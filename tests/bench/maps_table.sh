@@ -6,17 +6,30 @@
 # `tagmap compare`, and prints one row per map: points, wall seconds, peak
 # memory, required tags found, false tags by kind, and for maps with tags the
 # mean position and roll/pitch/yaw errors; below a row, its false and missed tags.
+# Then recall by the conditions the truth files record per tag (range,
+# points per tag cell), when they do.
 #
-#   tests/bench/maps_table.sh DIR [--tagmap build/bin/tagmap] [-- detect args...]
+#   tests/bench/maps_table.sh DIR [--tagmap build/bin/tagmap] [--keep OUT] [-- detect args...]
+#
+# --keep OUT keeps each map's result (OUT/X.json) and its comparison with the
+# per-tag conditions of the truth (OUT/X.cmp, `tagmap compare --conditions`).
 #
 # A benchmark, not a test: it prints numbers and exits 0 even when tags are
 # missed; the totals line says what a test would have asserted.
 set -euo pipefail
 
-dir=${1:?usage: maps_table.sh DIR [--tagmap BIN] [-- detect args...]}
+usage="usage: maps_table.sh DIR [--tagmap BIN] [--keep OUT] [-- detect args...]"
+dir=${1:?$usage}
 shift
 tagmap="$(cd "$(dirname "$0")/../.." && pwd)/build/bin/tagmap"
-if [ "${1:-}" = --tagmap ]; then tagmap=$2; shift 2; fi
+keep=""
+while [ $# -gt 0 ] && [ "$1" != -- ]; do
+	case $1 in
+	--tagmap) tagmap=$2; shift 2 ;;
+	--keep) keep=$2; mkdir -p "$keep"; shift 2 ;;
+	*) echo "maps_table: unknown option $1 ($usage)" >&2; exit 2 ;;
+	esac
+done
 [ "${1:-}" = -- ] && shift
 [ -x "$tagmap" ] || { echo "maps_table: no tagmap binary at $tagmap" >&2; exit 2; }
 
@@ -39,7 +52,9 @@ for truth in "$dir"/*.gt.json; do
 	mb=$(awk -F': ' '/Maximum resident/{printf "%.0f", $2/1024}' "$work/time")
 	points=$(cat "$work/out" "$work/err" | grep -oE 'read [0-9]+ points' | head -1 | grep -oE '[0-9]+' || true)
 	points=${points:-?}
-	"$tagmap" compare "$work/$name.json" "$truth" >"$work/cmp" 2>&1 || true
+	"$tagmap" compare "$work/$name.json" "$truth" --conditions >"$work/cmp" 2>&1 || true
+	grep -E '^conditions: ' "$work/cmp" | tail -n +2 >>"$work/conditions" || true
+	[ -n "$keep" ] && cp "$work/$name.json" "$keep/$name.json" && cp "$work/cmp" "$keep/$name.cmp"
 	summary=$(grep -E '^found ' "$work/cmp" | tail -1)
 	found=$(echo "$summary" | awk '{print $2}')
 	total=$(echo "$summary" | awk '{print $4}' | tr -d ,)
@@ -58,3 +73,30 @@ for truth in "$dir"/*.gt.json; do
 	[ "$points" != "?" ] && tot_pts=$((tot_pts + points))
 done
 echo "total: $tot_pts points, found $tot_found of $tot_req true tags, false $tot_false, wrong family/id $tot_wrong, duplicate $tot_dup"
+
+# Recall by condition: the truths' range_min and points_per_cell per tag
+# (required tags only: a tag marked not expected is neither found nor missed).
+[ -s "$work/conditions" ] && awk '
+	function bin(v, edges, n,   i) { for (i = 1; i <= n; i++) if (v < edges[i]) return i; return n + 1 }
+	BEGIN {
+		nr = split("2 3 4 5 6 8 12", re, " "); np = split("2 4 8 16 32 64", pe, " ")
+	}
+	$4 == "yes" || $4 == "no" {
+		if ($6 != "-") { b = bin($6, re, nr); rt[b]++; if ($4 == "yes") rf[b]++; anyr = 1 }
+		if ($5 != "-") { b = bin($5, pe, np); pt[b]++; if ($4 == "yes") pf[b]++; anyp = 1 }
+	}
+	function table(title, edges, n, tot, fnd, unit,   i, lo, hi) {
+		printf "recall by %s:", title
+		for (i = 1; i <= n + 1; i++) {
+			if (!tot[i]) continue
+			lo = i == 1 ? 0 : edges[i - 1]
+			if (i <= n) printf "  %s-%s%s %d/%d", lo, edges[i], unit, fnd[i], tot[i]
+			else printf "  %s+%s %d/%d", lo, unit, fnd[i], tot[i]
+		}
+		printf "\n"
+	}
+	END {
+		if (anyr) table("range", re, nr, rt, rf, " m")
+		if (anyp) table("points per cell", pe, np, pt, pf, "")
+	}' "$work/conditions"
+exit 0

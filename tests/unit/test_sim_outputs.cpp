@@ -3,9 +3,11 @@
 // map, the ground truth round-trips, the TUM files have one line per frame.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
+#include "tagmap/evaluation.h"
 #include "tagmap/io/point_cloud_io.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/sim_outputs.h"
@@ -44,6 +46,26 @@ TEST(SimOutputs, FilesReadBackConsistently)
 	ASSERT_EQ(truth.size(), out.truth.size());
 	for (size_t t = 0; t < truth.size(); t++)
 		for (int v = 0; v < 4; v++) EXPECT_LT((truth[t].corners[v] - out.truth[t].corners[v]).norm(), 1e-5);
+
+	// Each tag's sighting conditions, as the truth file gives them to
+	// `tagmap compare --conditions`: presenters' two tags at 2-6 m.
+	const std::string gt = (dir / "ground_truth.json").string();
+	const auto perCell = readTruthNumbers(gt, "points_per_cell"), near = readTruthNumbers(gt, "range_min"),
+			   far = readTruthNumbers(gt, "range_max");
+	ASSERT_EQ(perCell.size(), out.tagSightings.size());
+	for (size_t t = 0; t < out.tagSightings.size(); t++)
+	{
+		const sim::TagSighting& s = out.tagSightings[t];
+		EXPECT_GT(s.pointsInSquare, 0u);
+		EXPECT_LE(s.pointsInSquare, s.points);
+		EXPECT_NEAR(perCell[t], s.pointsInSquare / 64.0, 0.01);  // tag36h11: 8 x 8 cells
+		EXPECT_GT(near[t], 1.0);
+		EXPECT_LT(far[t], 8.0);
+		EXPECT_LE(near[t], far[t]);
+		EXPECT_GE(s.scans, 1);
+		EXPECT_LE(s.scans, static_cast<int>(out.frames.size()));
+	}
+	EXPECT_TRUE(std::isnan(readTruthNumbers(gt, "no_such_field").at(0)));
 
 	for (const char* f : {"trajectory_true.tum", "trajectory_drifted.tum"})
 	{

@@ -139,7 +139,7 @@ void checkFamily(const std::string& family, int id, double size, double rollDeg,
 	opt.seed = 11;
 	const auto out = sim::simulate(scene, opt);
 	ASSERT_EQ(out.truth.size(), 1u);
-	checkTag(out.map, out.truth[0], out.tagPoints[0], tolerance);
+	checkTag(out.map, out.truth[0], out.tagSightings[0].points, tolerance);
 }
 }  // namespace
 
@@ -156,7 +156,7 @@ TEST(SimTruthDecode, FamiliesSceneEveryTag)
 	const auto scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/families.yaml");
 	const auto out = sim::simulate(scene, {});
 	ASSERT_EQ(out.truth.size(), scene.tags.size());
-	for (size_t i = 0; i < out.truth.size(); i++) checkTag(out.map, out.truth[i], out.tagPoints[i], 0.005);
+	for (size_t i = 0; i < out.truth.size(); i++) checkTag(out.map, out.truth[i], out.tagSightings[i].points, 0.005);
 }
 
 // The paper's parking lot: the most slowly and closely scanned tag (id 4)
@@ -170,5 +170,5 @@ TEST(SimTruthDecode, ParkingSlowPassTag)
 	ASSERT_EQ(out.truthInMap.size(), 3u);
 	// 3 cm: the map is a blend of frames with different drift; truthInMap
 	// follows only the frame that saw the tag most.
-	checkTag(out.map, out.truthInMap[2], out.tagPoints[2], 0.03);
+	checkTag(out.map, out.truthInMap[2], out.tagSightings[2].points, 0.03);
 }

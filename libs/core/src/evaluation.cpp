@@ -93,4 +93,17 @@ std::vector<bool> readRequiredFlags(const std::string& path, const std::string& 
 	return out;
 }
 
+std::vector<double> readTruthNumbers(const std::string& path, const std::string& key, const std::string& listKey)
+{
+	const mrpt::containers::yaml doc = readYamlFile(path);
+	std::vector<double> out;
+	if (!doc.isMap() || !doc.has(listKey) || !doc[listKey].isSequence()) return out;
+	for (const auto& node : doc[listKey].asSequence())
+	{
+		const mrpt::containers::yaml t = node;
+		out.push_back(t.isMap() && t.has(key) ? yamlScalarAs<double>(t[key]) : std::nan(""));
+	}
+	return out;
+}
+
 }  // namespace tagmap

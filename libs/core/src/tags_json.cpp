@@ -51,7 +51,8 @@ std::string jsonQuote(const std::string& s)
 	return out + "\"";
 }
 
-std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string& extraFields)
+std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string& extraFields,
+					   const std::vector<std::string>& tagFields)
 {
 	std::ostringstream o;
 	o << "{\n  \"tags\": [";
@@ -79,6 +80,7 @@ std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string&
 				for (int c = 0; c < 6; c++) o << (r || c ? ", " : "") << num(t.covariance(r, c), 12);
 			o << "]";
 		}
+		if (i < tagFields.size() && !tagFields[i].empty()) o << ",\n      " << tagFields[i];
 		o << "\n    }";
 	}
 	o << (tags.empty() ? "]" : "\n  ]");
@@ -87,9 +89,10 @@ std::string tagsToJson(const std::vector<TagDetection>& tags, const std::string&
 	return o.str();
 }
 
-void writeTagsJson(const std::string& path, const std::vector<TagDetection>& tags, const std::string& extraFields)
+void writeTagsJson(const std::string& path, const std::vector<TagDetection>& tags, const std::string& extraFields,
+				   const std::vector<std::string>& tagFields)
 {
-	const std::string text = tagsToJson(tags, extraFields);
+	const std::string text = tagsToJson(tags, extraFields, tagFields);
 	writeFileAtomically(path, [&](std::ostream& out) { out << text; });
 }
 

@@ -29,6 +29,26 @@ mrpt::poses::CPose3D toMrpt(const Eigen::Isometry3d& T)
 }
 }  // namespace
 
+namespace
+{
+/** Each truth tag's sighting conditions as JSON members (the names the
+ *  ground truth of other simulators uses). */
+std::vector<std::string> sightingFields(const SimulationOutput& out)
+{
+	std::vector<std::string> fields;
+	for (const TagSighting& s : out.tagSightings)
+	{
+		char buf[256];
+		std::snprintf(buf, sizeof buf,
+					  "\"n_points\": %zu, \"n_points_in_square\": %zu, \"points_per_cell\": %.2f, \"n_scans\": %d, "
+					  "\"range_min\": %.3f, \"range_max\": %.3f, \"incidence_deg_min\": %.1f",
+					  s.points, s.pointsInSquare, s.pointsPerCell, s.scans, s.rangeMin, s.rangeMax, s.incidenceDegMin);
+		fields.push_back(buf);
+	}
+	return fields;
+}
+}  // namespace
+
 std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed, const Eigen::Vector3d& shift)
 {
 	std::ostringstream j;
@@ -40,7 +60,7 @@ std::string groundTruthMetadata(const SimulationOutput& out, uint64_t seed, cons
 	j << "], \"tag_points\": [";
 	for (size_t i = 0; i < out.truth.size(); i++)
 		j << (i ? ", " : "") << "{\"family\": " << jsonQuote(out.truth[i].family) << ", \"id\": " << out.truth[i].id
-		  << ", \"points\": " << out.tagPoints[i] << "}";
+		  << ", \"points\": " << out.tagSightings[i].points << "}";
 	// Where the drifted map shows each tag (see SimulationOutput::truthInMap).
 	j << "], \"tags_in_map\": [";
 	char num[64];
@@ -116,7 +136,7 @@ void writeSimulationOutputs(const std::string& dir, const SimulationOutput& out,
 		io::saveLas((d / "map.las").string(), out.map, las);
 	}
 	writeTagsJson((d / "ground_truth.json").string(), translatedTags(out.truth, options.shift),
-				  groundTruthMetadata(out, options.seed, options.shift));
+				  groundTruthMetadata(out, options.seed, options.shift), sightingFields(out));
 	if (!options.simplemap) return;
 	const mrpt::maps::CSimpleMap sm = toSimpleMap(out);
 	writeFileAtomicallyByName((d / "scans.simplemap").string(), [&](const std::string& tmp) {

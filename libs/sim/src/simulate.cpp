@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "ray_engine.h"
 #include "tagmap/errors.h"
+#include "tagmap/tag_family.h"
 #include "tagmap/sim/drift.h"
 #include "tagmap/sim/point_budget.h"
 #include "tagmap/sim/tag_paper.h"
@@ -83,6 +85,43 @@ std::vector<TagDetection> truthAsMapped(const SimulationOutput& out, size_t firs
 	}
 	return mapped;
 }
+
+std::vector<TagSighting> tagSightings(const SimulationOutput& out, size_t firstTagObject)
+{
+	std::vector<TagSighting> seen(out.truth.size());
+	std::vector<double> cosMax(out.truth.size(), 0);
+	for (const FrameData& fd : out.frames)
+	{
+		std::vector<bool> inFrame(out.truth.size(), false);
+		for (size_t i = fd.firstPoint; i < fd.firstPoint + fd.pointCount; i++)
+		{
+			const SimPoint& p = out.points[i];
+			if (p.object < static_cast<int32_t>(firstTagObject)) continue;
+			const size_t t = static_cast<size_t>(p.object) - firstTagObject;
+			const TagDetection& tag = out.truth[t];
+			TagSighting& s = seen[t];
+			const double range = p.local.cast<double>().norm();
+			s.rangeMin = s.points ? std::min(s.rangeMin, range) : range;
+			s.rangeMax = std::max(s.rangeMax, range);
+			s.points++;
+			inFrame[t] = true;
+			const Eigen::Vector3d world = fd.truePose * p.local.cast<double>();
+			const Eigen::Vector3d inTag = tag.pose.inverse() * world;
+			if (std::abs(inTag.x()) <= 0.5 * tag.size && std::abs(inTag.y()) <= 0.5 * tag.size) s.pointsInSquare++;
+			const Eigen::Vector3d ray = fd.truePose.linear() * p.local.cast<double>().normalized();
+			cosMax[t] = std::max(cosMax[t], std::abs(ray.dot(tag.pose.linear().col(2))));
+		}
+		for (size_t t = 0; t < seen.size(); t++) seen[t].scans += inFrame[t];
+	}
+	for (size_t t = 0; t < seen.size(); t++)
+	{
+		const TagFamilyInfo* family = findFamily(out.truth[t].family);
+		const int cells = family ? family->borderCells : 0;
+		if (cells > 0) seen[t].pointsPerCell = static_cast<double>(seen[t].pointsInSquare) / (cells * cells);
+		if (seen[t].points) seen[t].incidenceDegMin = std::acos(std::min(1.0, cosMax[t])) * 180 / M_PI;
+	}
+	return seen;
+}
 }  // namespace
 
 SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const CountProgressFn& progress)
@@ -152,7 +191,6 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const
 	}
 
 	// Merge at the drifted poses.
-	out.tagPoints.assign(sceneIn.tags.size(), 0);
 	const size_t firstTagObject = sceneIn.objects.size();
 	out.map.resize(out.points.size());
 	for (const FrameData& fd : out.frames)
@@ -164,10 +202,10 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const
 			const Eigen::Vector3f g = T * p.local;
 			out.map.setPointFast(i, g.x(), g.y(), g.z());
 			out.map.setPointIntensity(i, static_cast<float>(p.intensity01 * options.intensityScale));
-			if (p.object >= static_cast<int32_t>(firstTagObject)) out.tagPoints[p.object - firstTagObject]++;
 		}
 	}
 	out.map.mark_as_modified();
+	out.tagSightings = tagSightings(out, firstTagObject);
 	out.truthInMap = truthAsMapped(out, firstTagObject);
 	out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 	return out;

@@ -53,6 +53,12 @@ Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std:
 /** The `expected` flag of each tag in a truth file's list (true when absent). */
 std::vector<bool> readRequiredFlags(const std::string& path, const std::string& listKey = "tags");
 
+/** A numeric field of each tag in a truth file's list (NaN where a tag lacks
+ *  it): the conditions a simulator records per tag, e.g. `points_per_cell`,
+ *  `range_min`, `incidence_deg_min`, to tell why a tag was missed. */
+std::vector<double> readTruthNumbers(const std::string& path, const std::string& key,
+									 const std::string& listKey = "tags");
+
 const char* falseKindName(FalseKind kind);
 
 }  // namespace tagmap

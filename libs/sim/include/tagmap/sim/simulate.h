@@ -56,13 +56,25 @@ struct FrameData
 	size_t firstPoint = 0, pointCount = 0;  // range in SimulationOutput::points
 };
 
+/** How the scans saw one tag: the conditions a missed tag is explained by
+ *  (ground_truth.json writes them per tag). */
+struct TagSighting
+{
+	size_t points = 0;  // points whose echo came mostly from the tag's paper
+	size_t pointsInSquare = 0;  // of those, inside the black border square
+	double pointsPerCell = 0;  // pointsInSquare per cell of the border square
+	int scans = 0;  // frames with a point on the paper
+	double rangeMin = 0, rangeMax = 0;  // metres from the sensor, over those points (0: none)
+	double incidenceDegMin = 0;  // smallest angle between a ray and the tag's normal
+};
+
 struct SimulationOutput
 {
 	std::string sceneName;
 	std::vector<std::string> sensorNames;
 	std::vector<std::string> objectNames;  // scene objects, then one paper per tag
 	std::vector<TagDetection> truth;  // printed faces in {G}, vertex order of docs/RESULT_FORMAT.md
-	std::vector<size_t> tagPoints;  // points whose echo came mostly from each tag's paper
+	std::vector<TagSighting> tagSightings;  // one per truth tag
 	/** Each tag where the drifted map shows it: the true pose moved by the
 	 *  drift of the frame that saw most of it (T_drifted_k * T_true_k^-1).
 	 *  Equals `truth` without drift; tells map error from detector error. */
