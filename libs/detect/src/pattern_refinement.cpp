@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <opencv2/imgproc.hpp>
 
 #include "tagmap/tag_family.h"
@@ -224,11 +225,28 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 			}
 			if (!improved) break;
 		}
-		// In-plane covariance from the Gauss-Newton normal equations.
+		// In-plane covariance, the sandwich H^-1 (sum over cells of g g^T)
+		// H^-1 with g the gradient of one tag cell's residuals: within a cell
+		// they are correlated (the beam footprint, and a model blur that is
+		// not the sensor's, spread one error over neighbours), and treating
+		// thousands of points as independent reported in-plane angles 2-5x
+		// too tight (devset: 0.02-0.05 deg reported, 0.1-0.25 deg off).
 		{
-			const double sigma2 = best.cost;
 			const Eigen::MatrixXd J = jacobian(s, best.residuals, 3);
-			const Eigen::Matrix3d cov = (J.transpose() * J).inverse() * sigma2;
+			const Eigen::Matrix3d Hinv = (J.transpose() * J).inverse();
+			const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
+			std::map<std::pair<int, int>, Eigen::Vector3d> perCell;
+			for (size_t k = 0; k < q.size(); k++)
+			{
+				const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
+				const std::pair<int, int> key(static_cast<int>(std::floor((c * x + sn * y) / cell)),
+											  static_cast<int>(std::floor((-sn * x + c * y) / cell)));
+				auto it = perCell.try_emplace(key, Eigen::Vector3d::Zero()).first;
+				it->second += J.row(static_cast<long>(k)).transpose() * best.residuals(static_cast<long>(k));
+			}
+			Eigen::Matrix3d meat = Eigen::Matrix3d::Zero();
+			for (const auto& [key, g] : perCell) meat += g * g.transpose();
+			const Eigen::Matrix3d cov = Hinv * meat * Hinv;
 			if (cov.allFinite())
 			{
 				const Eigen::Matrix3d R = T0.linear();
