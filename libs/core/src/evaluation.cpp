@@ -80,30 +80,32 @@ Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std:
 	return ev;
 }
 
-std::vector<bool> readRequiredFlags(const std::string& path, const std::string& listKey)
+namespace
+{
+/** One value per tag of a truth file's list (none when it has no such list). */
+template <typename T, typename PerTag>
+std::vector<T> perTruthTag(const std::string& path, const std::string& listKey, PerTag perTag)
 {
 	const mrpt::containers::yaml doc = readYamlFile(path);
-	std::vector<bool> out;
+	std::vector<T> out;
 	if (!doc.isMap() || !doc.has(listKey) || !doc[listKey].isSequence()) return out;
-	for (const auto& node : doc[listKey].asSequence())
-	{
-		const mrpt::containers::yaml t = node;
-		out.push_back(!(t.isMap() && t.has("expected")) || yamlScalarAs<bool>(t["expected"]));
-	}
+	for (const auto& node : doc[listKey].asSequence()) out.push_back(perTag(mrpt::containers::yaml(node)));
 	return out;
+}
+}  // namespace
+
+std::vector<bool> readRequiredFlags(const std::string& path, const std::string& listKey)
+{
+	return perTruthTag<bool>(path, listKey, [](const mrpt::containers::yaml& t) {
+		return !(t.isMap() && t.has("expected")) || yamlScalarAs<bool>(t["expected"]);
+	});
 }
 
 std::vector<double> readTruthNumbers(const std::string& path, const std::string& key, const std::string& listKey)
 {
-	const mrpt::containers::yaml doc = readYamlFile(path);
-	std::vector<double> out;
-	if (!doc.isMap() || !doc.has(listKey) || !doc[listKey].isSequence()) return out;
-	for (const auto& node : doc[listKey].asSequence())
-	{
-		const mrpt::containers::yaml t = node;
-		out.push_back(t.isMap() && t.has(key) ? yamlScalarAs<double>(t[key]) : std::nan(""));
-	}
-	return out;
+	return perTruthTag<double>(path, listKey, [&](const mrpt::containers::yaml& t) {
+		return t.isMap() && t.has(key) ? yamlScalarAs<double>(t[key]) : std::nan("");
+	});
 }
 
 }  // namespace tagmap

@@ -97,7 +97,6 @@ struct Evaluation
 {
 	double cost = 0;  // mean squared residual after the best affine intensity map
 	double correlation = 0;
-	size_t used = 0;
 	Eigen::VectorXd residuals;
 };
 
@@ -136,7 +135,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 
 	// Residuals with the intensity gain and offset solved in closed form.
 	const PatternModel* model = &models.front();
-	const PatternModel* chosen = model;
+	const PatternModel* chosen = nullptr;
 	auto evaluate = [&](const FitState& s, bool wantResiduals) {
 		Evaluation e;
 		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
@@ -154,8 +153,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 			smI += v * I[k];
 			sII += I[k] * I[k];
 		}
-		e.used = q.size();
-		const double n = static_cast<double>(e.used);
+		const double n = static_cast<double>(q.size());
 		const double vm = smm / n - (sm / n) * (sm / n), vI = sII / n - (sI / n) * (sI / n);
 		const double cov = smI / n - (sm / n) * (sI / n);
 		e.correlation = vm > 0 && vI > 0 ? cov / std::sqrt(vm * vI) : 0;
@@ -175,7 +173,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 	{
 		model = &candidate;
 		const Evaluation e = evaluate(s, true);
-		if (best.used == 0 || e.correlation > best.correlation) best = e, chosen = &candidate;
+		if (chosen == nullptr || e.correlation > best.correlation) best = e, chosen = &candidate;
 	}
 	model = chosen;
 	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
@@ -265,7 +263,7 @@ bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs
 		}
 	}
 	t.patternFit = best.correlation;
-	t.patternPoints = static_cast<int>(best.used);
+	t.patternPoints = static_cast<int>(q.size());
 	if (best.correlation < p.minPatternFit) return false;
 
 	Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();

@@ -27,10 +27,7 @@ mrpt::poses::CPose3D toMrpt(const Eigen::Isometry3d& T)
 		for (int c = 0; c < 4; c++) M(r, c) = T.matrix()(r, c);
 	return mrpt::poses::CPose3D(M);
 }
-}  // namespace
 
-namespace
-{
 /** Each truth tag's sighting conditions as JSON members (the names the
  *  ground truth of other simulators uses). */
 std::vector<std::string> sightingFields(const SimulationOutput& out)
