@@ -66,8 +66,9 @@ int runObserve(int argc, char** argv)
 		io::saveRawlog(out, observed);
 		progress.finish();
 		if (quiet) return 0;
-		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s -> %s\n", report.scans,
-					report.scansWithTags, report.tagsSeen, report.seconds, out.c_str());
+		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s (detection: median %.1f ms per scan) -> %s\n",
+					report.scans, report.scansWithTags, report.tagsSeen, report.seconds,
+					1000 * report.medianDetectSeconds(), out.c_str());
 		std::string perTag;
 		for (const auto& [tag, scans] : report.scansPerTag) perTag += " " + tag + " (" + std::to_string(scans) + ")";
 		std::printf("scans per tag:%s\n", perTag.empty() ? " none" : perTag.c_str());

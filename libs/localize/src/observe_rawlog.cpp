@@ -2,6 +2,7 @@
 
 #include <mrpt/obs/CSensoryFrame.h>
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 
@@ -54,7 +55,11 @@ class Observer
 		tags->sensorLabel = scanObs.sensorLabel + params_.tagsLabelSuffix;
 		tags->timestamp = scanObs.timestamp;
 		tags->sensorPose = sensorPose;
-		tags->tags = detectTagsInScan(pipeline_, merged);
+		Detections found = pipeline_.detect(merged);
+		std::vector<Verdict> verdicts;
+		for (const CandidateReport& c : found.candidates) verdicts.push_back(c.verdict);
+		report_.perScan.push_back({merged.size(), found.totalSeconds, std::move(found.stages), std::move(verdicts)});
+		tags->tags = std::move(found.tags);
 
 		auto ranges = makeBeaconRanges(tags->tags, sensorPose, params_.ranges);
 		ranges->sensorLabel = scanObs.sensorLabel + params_.rangesLabelSuffix;
@@ -106,6 +111,15 @@ size_t countObservations(const mrpt::obs::CRawlog& in)
 	return n;
 }
 }  // namespace
+
+double ObserveReport::medianDetectSeconds() const
+{
+	if (perScan.empty()) return 0;
+	std::vector<double> s;
+	for (const ScanTiming& t : perScan) s.push_back(t.seconds);
+	std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+	return s[s.size() / 2];
+}
 
 mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& pipeline, const ObserveParams& params,
 								 ObserveReport* reportOut, const CountProgressFn& progress)

@@ -31,6 +31,16 @@ struct ObserveParams
 	size_t window = 1;
 };
 
+/** One detection's cost: the points it ran on (the window merged) and the
+ *  pipeline's own per-stage report. */
+struct ScanTiming
+{
+	size_t points = 0;
+	double seconds = 0;  // Pipeline::detect alone, not reading or merging
+	std::vector<StageReport> stages;
+	std::vector<Verdict> candidates;  // what became of each candidate (Detections::candidates)
+};
+
 struct ObserveReport
 {
 	size_t scans = 0;  // LiDAR observations processed
@@ -40,7 +50,11 @@ struct ObserveReport
 	/** Scans in which each tag ("family:id") was seen: is every tag of the
 	 *  site observed somewhere along the run? */
 	std::map<std::string, size_t> scansPerTag;
+	std::vector<ScanTiming> perScan;  // one per scan, in rawlog order
 	double seconds = 0;
+	/** Median of perScan's seconds (0 without scans): the sensor rate the
+	 *  detection keeps up with is 1 / this. */
+	double medianDetectSeconds() const;
 };
 
 /** Returns a copy of `in` with the tag observations added. Observations

@@ -1,0 +1,205 @@
+// Single-scan rate: `tagmap observe`'s path (rawlog scan -> sensor frame ->
+// Pipeline::detect -> tag poses) on simulated robot runs, the pipeline on ONE
+// thread, as a robot's localization would run it beside everything else.
+// Prints per sensor: points per detection, median and 90th-percentile
+// milliseconds, scans per second, the median milliseconds of each stage, and
+// what the scans saw against the simulator's truth in the sensor frame
+// (sightings, false or wrong-ID reports, pose errors), so a speed-up that
+// costs a sighting or accuracy shows.
+//
+// Sensors (share/scenes/localize_site.yaml, the localization demo's site):
+//   spinning  a 64-beam x 512-column LiDAR at 10 Hz (~33 k points a scan)
+//   livox     the Livox-like rosette, 0.1 s frames (~10 k points), each merged
+//             with the 2 before it by the odometry (observe --window 3: ~30 k)
+//
+//   build/bin/tagmap-bench-observe [--sensor spinning|livox|both] [--scans N]
+//                                  [--family LIST] [--seed S]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <mrpt/obs/CSensoryFrame.h>
+
+#include "tagmap/evaluation.h"
+#include "tagmap/localize/observe_rawlog.h"
+#include "tagmap/localize/rawlog_visit.h"
+#include "tagmap/localize/scan_tags.h"
+#include "tagmap/obs/CObservationTagPoses.h"
+#include "tagmap/sim/scene_loader.h"
+#include "tagmap/sim/sim_rawlog.h"
+#include "tagmap/sim/simulate.h"
+#include "tagmap/tag_family.h"
+
+using namespace tagmap;
+
+namespace
+{
+struct Options
+{
+	std::string sensor = "both";
+	size_t scans = 0;  // 0: the whole run
+	std::string families = "tag36h11";
+	uint64_t seed = 1;
+};
+
+struct SensorRun
+{
+	std::string label, run;
+	std::map<std::string, double> params;
+	size_t window;
+};
+
+double quantile(std::vector<double> v, double q)
+{
+	if (v.empty()) return NAN;
+	const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * v.size()));
+	std::nth_element(v.begin(), v.begin() + k, v.end());
+	return v[k];
+}
+
+// The true tags as the sensor of `frame` sees them: T_sensor_tag.
+std::vector<TagDetection> truthInSensorFrame(const std::vector<TagDetection>& truth, const sim::FrameData& frame)
+{
+	std::vector<TagDetection> out = truth;
+	for (TagDetection& t : out)
+	{
+		t.pose = frame.truePose.inverse() * t.pose;
+		t.corners = cornersFromPose(t.pose, t.size);
+	}
+	return out;
+}
+
+// Each scan's CObservationTagPoses, in rawlog order.
+std::vector<std::vector<TagDetection>> tagsPerScan(const mrpt::obs::CRawlog& observed)
+{
+	std::vector<std::vector<TagDetection>> out;
+	const auto take = [&](const mrpt::obs::CObservation::Ptr& o) {
+		if (auto t = std::dynamic_pointer_cast<obs::CObservationTagPoses>(o)) out.push_back(t->tags);
+	};
+	localize::visitRawlog(observed, {{},
+									 [&](const mrpt::obs::CSensoryFrame& sf) {
+										 for (const auto& o : sf) take(o);
+									 },
+									 take});
+	return out;
+}
+
+void benchSensor(const SensorRun& s, const Options& opt)
+{
+	sim::Scene scene = sim::loadScene(TAGMAP_SOURCE_DIR "/share/scenes/localize_site.yaml", s.params);
+	scene.runs.erase(std::remove_if(scene.runs.begin(), scene.runs.end(),
+									[&](const sim::ScanRun& r) { return r.name != s.run; }),
+					 scene.runs.end());
+	sim::SimOptions simOpt;
+	simOpt.seed = opt.seed;
+	sim::SimulationOutput sim = sim::simulate(scene, simOpt);
+	if (opt.scans > 0 && sim.frames.size() > opt.scans) sim.frames.resize(opt.scans);
+
+	PipelineParams params = localize::singleScanPipelineParams();
+	params.families = parseFamilyList(opt.families);
+	params.threads = 1;
+	localize::ObserveParams observeParams;
+	observeParams.window = s.window;
+	localize::ObserveReport report;
+	const mrpt::obs::CRawlog observed =
+		localize::observeRawlog(sim::toRawlog(sim), Pipeline(params), observeParams, &report);
+	const std::vector<std::vector<TagDetection>> seen = tagsPerScan(observed);
+
+	std::vector<double> ms, points;
+	std::map<std::string, std::vector<double>> stageMs, stageItems;
+	std::vector<std::string> stageOrder;
+	double totalSeconds = 0;
+	std::map<std::string, size_t> verdicts;
+	for (const localize::ScanTiming& t : report.perScan)
+	{
+		for (Verdict v : t.candidates) verdicts[verdictName(v)]++;
+		ms.push_back(1000 * t.seconds);
+		points.push_back(static_cast<double>(t.points));
+		totalSeconds += t.seconds;
+		for (const StageReport& st : t.stages)
+		{
+			if (!stageMs.count(st.name)) stageOrder.push_back(st.name);
+			stageMs[st.name].push_back(1000 * st.seconds);
+			stageItems[st.name].push_back(static_cast<double>(st.itemsIn));
+		}
+	}
+	std::vector<double> transErr, rotErr;
+	int sightings = 0, falseReports = 0, wrongId = 0, scansWithTag = 0;
+	for (size_t k = 0; k < seen.size() && k < sim.frames.size(); k++)
+	{
+		const Evaluation ev = evaluateDetections(seen[k], truthInSensorFrame(sim.truth, sim.frames[k]));
+		scansWithTag += !seen[k].empty();
+		for (const TagError& e : ev.perTruth)
+			if (e.found)
+			{
+				sightings++;
+				transErr.push_back(e.positionError.norm());
+				rotErr.push_back(e.rotationErrorDeg.norm());
+			}
+		falseReports += ev.falsePositives();
+		wrongId += ev.falseOf(FalseKind::WrongId);
+	}
+
+	std::printf("\n== %s: %zu scans, %.0f points per detection (median), families %s, 1 thread\n", s.label.c_str(),
+				report.perScan.size(), quantile(points, 0.5), opt.families.c_str());
+	std::printf("detect ms per scan: median %.2f, p90 %.2f, max %.2f; %.1f scans/s (all scans)\n", quantile(ms, 0.5),
+				quantile(ms, 0.9), quantile(ms, 1.0), report.perScan.size() / std::max(totalSeconds, 1e-9));
+	std::printf("%-20s %10s %10s %10s\n", "stage", "median ms", "p90 ms", "items in");
+	for (const std::string& name : stageOrder)
+		std::printf("%-20s %10.3f %10.3f %10.0f\n", name.c_str(), quantile(stageMs[name], 0.5),
+					quantile(stageMs[name], 0.9), quantile(stageItems[name], 0.5));
+	std::printf("candidates (all scans):");
+	for (const auto& [name, n] : verdicts) std::printf(" %s %zu", name.c_str(), n);
+	std::printf("\n");
+	std::printf("scans with a tag %d of %zu, sightings %d, false %d (wrong id %d)\n", scansWithTag, seen.size(),
+				sightings, falseReports, wrongId);
+	if (!transErr.empty())
+		std::printf("sighting error in the sensor frame: position median %.4f m, p90 %.4f m; rotation median %.3f deg, "
+					"p90 %.3f deg\n",
+					quantile(transErr, 0.5), quantile(transErr, 0.9), quantile(rotErr, 0.5), quantile(rotErr, 0.9));
+}
+
+[[noreturn]] void usage(const char* why)
+{
+	std::fprintf(stderr,
+				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|livox|both] [--scans N] "
+				 "[--family LIST] [--seed S]\n",
+				 why);
+	std::exit(2);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+	Options opt;
+	for (int i = 1; i < argc; i++)
+	{
+		const std::string a = argv[i];
+		if (i + 1 >= argc) usage(("missing value after " + a).c_str());
+		const std::string v = argv[++i];
+		if (a == "--sensor" && (v == "spinning" || v == "livox" || v == "both")) opt.sensor = v;
+		else if (a == "--scans") opt.scans = std::strtoul(v.c_str(), nullptr, 10);
+		else if (a == "--family") opt.families = v;
+		else if (a == "--seed") opt.seed = std::strtoull(v.c_str(), nullptr, 10);
+		else usage(("unknown option or value: " + a + " " + v).c_str());
+	}
+	try
+	{
+		const std::vector<SensorRun> runs = {
+			{"spinning 64 x 512, 10 Hz", "robot", {{"robot_beams", 64}, {"robot_columns", 512}}, 1},
+			{"livox 0.1 s frames, window 3", "robot_livox", {}, 3},
+		};
+		for (const SensorRun& s : runs)
+			if (opt.sensor == "both" || s.run == (opt.sensor == "spinning" ? "robot" : "robot_livox")) benchSensor(s, opt);
+	}
+	catch (const std::exception& e)
+	{
+		std::fprintf(stderr, "tagmap-bench-observe: %s\n", e.what());
+		return 1;
+	}
+	return 0;
+}
