@@ -16,6 +16,10 @@ OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, double leaf, const GatherP
 	// A leaf finer than a voxel would only mark voxel centres: the gather
 	// below visits the voxels under each occupied leaf.
 	if (!(leaf >= grid.cellSize())) throw std::invalid_argument("octree leaf must be at least the voxel cell");
+	// A small map (a single scan: 10-50 k points) is searched voxel row by
+	// voxel row: its boxes span few rows, and building the tree would cost
+	// more than every gather it speeds up. The points found are the same.
+	if (grid.voxelCount() < kTreeFromVoxels) return;
 	tree_ = std::make_unique<octomap::OcTree>(leaf);
 	// Only occupancy matters: mark each occupied leaf once (a leaf holds
 	// several voxels; repeated hits only raise its log-odds),
@@ -64,16 +68,8 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 	const Eigen::Vector3d lo = box.center - reach, hi = box.center + reach;
 	std::vector<uint32_t> out;
 	const double cell = grid_.cellSize();
-	for (auto it = tree_->begin_leafs_bbx(octomap::point3d(lo.x(), lo.y(), lo.z()), octomap::point3d(hi.x(), hi.y(), hi.z())),
-			  end = tree_->end_leafs_bbx();
-		 it != end; ++it)
-	{
-		if (!tree_->isNodeOccupied(*it)) continue;
-		const octomap::point3d c = it.getCoordinate();
-		const double s = it.getSize();
-		// Neighbour-grid voxels under this leaf, clipped to the query bounds.
-		const Eigen::Vector3d a = Eigen::Vector3d(c.x(), c.y(), c.z()).array() - s / 2;
-		const Eigen::Vector3d b = Eigen::Vector3d(c.x(), c.y(), c.z()).array() + s / 2;
+	// The voxels within [a, b] (clipped to the query bounds): their points inside the box.
+	const auto gatherBetween = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 		const Eigen::Vector3d qa = a.cwiseMax(lo), qb = b.cwiseMin(hi);
 		const VoxelKey ka = grid_.keyOf((qa.array() + cell * 1e-6).matrix().cast<float>());
 		const VoxelKey kb = grid_.keyOf((qb.array() - cell * 1e-6).matrix().cast<float>());
@@ -88,7 +84,19 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 							out.push_back(*p);
 					}
 				});
-	}
+	};
+	if (!tree_) gatherBetween(lo, hi);
+	else
+		for (auto it = tree_->begin_leafs_bbx(octomap::point3d(lo.x(), lo.y(), lo.z()),
+											 octomap::point3d(hi.x(), hi.y(), hi.z())),
+				  end = tree_->end_leafs_bbx();
+			 it != end; ++it)
+		{
+			if (!tree_->isNodeOccupied(*it)) continue;
+			// Neighbour-grid voxels under this leaf.
+			const Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
+			gatherBetween(c.array() - it.getSize() / 2, c.array() + it.getSize() / 2);
+		}
 	std::sort(out.begin(), out.end());
 	out.erase(std::unique(out.begin(), out.end()), out.end());
 	return out;

@@ -110,6 +110,15 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 		contours.insert(contours.end(), found.begin(), found.end());
 	}
 	const double minArea = 0.002 * static_cast<double>(gray8.total());
+	// Both smoothings outline most blobs alike: a seed within half a pixel
+	// of one already fitted would climb to the same square again.
+	std::vector<cv::RotatedRect> fitted;
+	const auto fittedBefore = [&](const cv::RotatedRect& r) {
+		return std::any_of(fitted.begin(), fitted.end(), [&](const cv::RotatedRect& f) {
+			return cv::norm(f.center - r.center) < 0.5 && std::abs(f.size.width - r.size.width) < 0.5 &&
+				   std::abs(f.size.height - r.size.height) < 0.5 && std::abs(f.angle - r.angle) < 0.5;
+		});
+	};
 	for (const auto& c : contours)
 	{
 		// Blurred outlines are ragged: simplify their convex hull, loosening
@@ -118,8 +127,11 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 		// A blob too ragged for four corners may still be most of a
 		// blurred tag: the square its edges fit best is a quad too.
 		const cv::RotatedRect box = cv::minAreaRect(c);
-		if (box.size.width < 2 * box.size.height && box.size.height < 2 * box.size.width)
+		if (box.size.width < 2 * box.size.height && box.size.height < 2 * box.size.width && !fittedBefore(box))
+		{
 			quads.push_back(fitBorderSquare(smooth, box));
+			fitted.push_back(box);
+		}
 		std::vector<cv::Point> hull, poly;
 		cv::convexHull(c, hull);
 		for (double eps = 0.02; eps <= 0.12 && poly.size() != 4; eps += 0.01)

@@ -40,7 +40,10 @@ class OctreeGatherer
 	std::vector<uint32_t> gather(const OrientedBox& box, double spacing, const float* xs, const float* ys,
 								 const float* zs) const;
 
-	size_t occupiedLeaves() const { return leaves_; }
+	size_t occupiedLeaves() const { return leaves_; }  // 0 without a tree
+
+	/** Grids with fewer voxels get no tree (a single scan): rows are searched directly. */
+	static constexpr size_t kTreeFromVoxels = 65536;
 
    private:
 	const VoxelGrid& grid_;
