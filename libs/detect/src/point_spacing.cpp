@@ -180,10 +180,13 @@ double estimatePointSpacing(const float* xs, const float* ys, const float* zs, s
 	// Any cell that resolves gives the same (exact) median, so the cell only
 	// decides how many passes it takes. Start from the spacing of a 1/64
 	// subsample: up to 8x the map's on surfaces (5.8x measured on the large
-	// hall), 4x in volumes, so a quarter of it resolves in one pass; below
-	// any plausible spacing when there is no subsample to ask.
+	// hall), 4x in volumes, so a quarter of it resolves in one pass. Without
+	// a subsample to ask, a quarter of the spacing points filling the box's
+	// volume would have: LiDAR points lie on surfaces, far sparser in 3D
+	// than that, so this is still too fine and doubles up (a 24 k-point scan:
+	// 2 passes, not 3-4), and each pass costs about what a resolving one does.
 	const double floorCell = ext.maxCoeff() * 1e-6;
-	double cell = std::cbrt(ext.prod() / static_cast<double>(n)) / 16;
+	double cell = std::cbrt(ext.prod() / static_cast<double>(n)) / 4;
 	constexpr size_t kSub = 64;
 	if (n >= kSub * 4096)
 	{
