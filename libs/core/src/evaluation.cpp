@@ -53,6 +53,7 @@ Evaluation evaluateDetections(const std::vector<TagDetection>& found, const std:
 			if ((d.position() - t.position()).norm() > 0.5 * t.size) continue;
 			used[k] = true;
 			e.found = true;
+			e.foundIndex = static_cast<int>(k);
 			e.positionError = (d.position() - t.position()).cwiseAbs();
 			e.rotationErrorDeg = (rollPitchYaw(t.pose.linear().transpose() * d.pose.linear()) * 180.0 / M_PI).cwiseAbs();
 			e.vertexOrderCorrect = true;

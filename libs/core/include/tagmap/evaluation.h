@@ -15,6 +15,7 @@ struct TagError
 	std::string family;
 	int id = -1;
 	bool found = false;
+	int foundIndex = -1;  // the matching detection in `found` (-1: none)
 	Eigen::Vector3d positionError = Eigen::Vector3d::Zero();  // |found - true| per map axis, metres
 	Eigen::Vector3d rotationErrorDeg = Eigen::Vector3d::Zero();  // |roll|, |pitch|, |yaw| of R_true^T R_found
 	double maxCornerError = 0;  // metres
