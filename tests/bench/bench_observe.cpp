@@ -29,6 +29,7 @@
 #include "tagmap/localize/rawlog_visit.h"
 #include "tagmap/localize/scan_tags.h"
 #include "tagmap/obs/CObservationTagPoses.h"
+#include "tagmap/quantile.h"
 #include "tagmap/sim/scene_loader.h"
 #include "tagmap/sim/sim_rawlog.h"
 #include "tagmap/sim/simulate.h"
@@ -74,13 +75,8 @@ NormalizedError normalizedError(const TagDetection& found, const TagDetection& t
 	return n;
 }
 
-double quantile(std::vector<double> v, double q)
-{
-	if (v.empty()) return NAN;
-	const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * v.size()));
-	std::nth_element(v.begin(), v.begin() + k, v.end());
-	return v[k];
-}
+// NaN for no values (a sensor that saw no tag has no errors to rank).
+double quantile(std::vector<double> v, double q) { return v.empty() ? NAN : quantileInPlace(v, q); }
 
 // The true tags as the sensor of `frame` sees them: T_sensor_tag.
 std::vector<TagDetection> truthInSensorFrame(const std::vector<TagDetection>& truth, const sim::FrameData& frame)

@@ -2,7 +2,6 @@
 
 #include <mrpt/obs/CSensoryFrame.h>
 
-#include <algorithm>
 #include <chrono>
 #include <deque>
 
@@ -11,6 +10,7 @@
 #include "tagmap/localize/rawlog_visit.h"
 #include "tagmap/localize/scan_tags.h"
 #include "tagmap/obs/CObservationTagPoses.h"
+#include "tagmap/quantile.h"
 
 namespace tagmap::localize
 {
@@ -117,8 +117,7 @@ double ObserveReport::medianDetectSeconds() const
 	if (perScan.empty()) return 0;
 	std::vector<double> s;
 	for (const ScanTiming& t : perScan) s.push_back(t.seconds);
-	std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
-	return s[s.size() / 2];
+	return medianInPlace(s);
 }
 
 mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& pipeline, const ObserveParams& params,
