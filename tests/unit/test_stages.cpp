@@ -12,6 +12,7 @@
 #include "tagmap/clustering.h"
 #include "tagmap/intensity_gradient.h"
 #include "tagmap/merge_detections.h"
+#include "tagmap/octree_gather.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/read_evidence.h"
 #include "tagmap/support_plane.h"
@@ -130,6 +131,42 @@ TEST(VoxelGrid, RowScanVisitsTheSameVoxelsAsFind)
 					if (const int64_t v = grid.find({xk, yk, zk}); v >= 0) found.push_back(static_cast<size_t>(v));
 				EXPECT_EQ(scanned, found) << x0 << " " << yk << " " << zk;
 			}
+}
+
+TEST(OctreeGather, TreeAndRowSearchGatherExactlyTheBoxesPoints)
+{
+	// A small cloud (no tree: voxel rows searched directly) and a large one
+	// (the occupancy tree): both must return exactly the points a brute-force
+	// test of every point puts inside the enlarged, tilted box.
+	for (const size_t n : {20000u, 400000u})
+	{
+		std::mt19937 rng(5);
+		std::uniform_real_distribution<float> u(0.0f, 1.0f);
+		std::vector<float> x(n), y(n), z(n);
+		for (size_t i = 0; i < n; i++) x[i] = 4 * u(rng), y[i] = 4 * u(rng), z[i] = 4 * u(rng);
+		const VoxelGrid grid(x.data(), y.data(), z.data(), n, 0.02, 1);
+		const GatherParams params;
+		const OctreeGatherer gatherer(grid, 0.08, params, 1);
+		EXPECT_EQ(gatherer.occupiedLeaves() > 0, grid.voxelCount() >= OctreeGatherer::kTreeFromVoxels) << n;
+		for (int k = 0; k < 5; k++)
+		{
+			OrientedBox box;
+			box.center = Eigen::Vector3d(0.5 + 0.7 * k, 2.0, 1.0 + 0.5 * k);
+			box.axes = Eigen::AngleAxisd(0.3 * k + 0.2, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+			box.extent = Eigen::Vector3d(0.6, 0.5, 0.05);
+			const double spacing = 0.01;
+			const Eigen::Vector3d half(0.5 * box.extent.x() * params.enlarge, 0.5 * box.extent.y() * params.enlarge,
+									   0.5 * box.extent.z() + params.slabSpacings * spacing);
+			std::vector<uint32_t> expected;
+			for (uint32_t i = 0; i < n; i++)
+			{
+				const Eigen::Vector3d q = box.axes.transpose() * (Eigen::Vector3d(x[i], y[i], z[i]) - box.center);
+				if ((q.cwiseAbs().array() <= half.array()).all()) expected.push_back(i);
+			}
+			EXPECT_FALSE(expected.empty());
+			EXPECT_EQ(gatherer.gather(box, spacing, x.data(), y.data(), z.data()), expected) << n << " box " << k;
+		}
+	}
 }
 
 namespace
