@@ -159,9 +159,11 @@ void benchSensor(const SensorRun& s, const Options& opt)
 			transErr.push_back(e.positionError.norm());
 			rotErr.push_back(e.rotationErrorDeg.norm());
 			const TagDetection& d = seen[k][static_cast<size_t>(e.foundIndex)];
+			// A detection without a covariance has no normalized error: ranked
+			// as NaN it would break the quantiles' ordering.
 			const NormalizedError n = normalizedError(d, truth[t]);
-			transNorm.push_back(n.position);
-			rotNorm.push_back(n.rotation);
+			if (std::isfinite(n.position)) transNorm.push_back(n.position);
+			if (std::isfinite(n.rotation)) rotNorm.push_back(n.rotation);
 		}
 		falseReports += ev.falsePositives();
 		wrongId += ev.falseOf(FalseKind::WrongId);
