@@ -13,7 +13,7 @@
 //             with the 2 before it by the odometry (observe --window 3: ~30 k)
 //
 //   build/bin/tagmap-bench-observe [--sensor spinning|livox|both] [--scans N]
-//                                  [--family LIST] [--seed S]
+//                                  [--family LIST] [--seed S] [--window N] [--misses]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -45,6 +45,8 @@ struct Options
 	size_t scans = 0;  // 0: the whole run
 	std::string families = "tag36h11";
 	uint64_t seed = 1;
+	size_t window = 0;  // 0: each sensor's own (spinning 1, Livox 3)
+	bool misses = false;  // explain every tag with points in the window that was not seen
 };
 
 struct SensorRun
@@ -105,6 +107,98 @@ std::vector<std::vector<TagDetection>> tagsPerScan(const mrpt::obs::CRawlog& obs
 	return out;
 }
 
+// Why tags in view were not seen. A tag is in view of a frame when the
+// window's points cover its border square: per tag, the frames by the
+// fraction of the square's cells (s / borderCells on a side) holding at
+// least one point of its paper, seen / in view; and for the frames with
+// every cell covered but no sighting, what became of the candidate nearest
+// its centre ("not proposed": none within half the tag's size). A tag cut
+// by the edge of the field of view, or between a rosette's petals, is not
+// in view however many points fall on its paper.
+struct Coverage
+{
+	double cellsHit = 0;  // fraction of the border square's cells with a point
+	double pointsPerCell = 0;  // points in the square per cell
+};
+
+Coverage tagCoverage(const sim::SimulationOutput& sim, size_t tag, size_t frame, size_t window)
+{
+	const size_t paper = sim.objectNames.size() - sim.truth.size() + tag;
+	const TagFamilyInfo* fam = findFamily(sim.truth[tag].family);
+	const int cells = fam ? fam->borderCells : 8;
+	const double size = sim.truth[tag].size;
+	std::vector<char> hit(static_cast<size_t>(cells * cells), 0);
+	size_t inSquare = 0;
+	for (size_t w = 0; w < window && w <= frame; w++)
+	{
+		const sim::FrameData& f = sim.frames[frame - w];
+		const Eigen::Isometry3d toTag = (f.truePose.inverse() * sim.truth[tag].pose).inverse();
+		for (size_t i = f.firstPoint; i < f.firstPoint + f.pointCount; i++)
+		{
+			if (sim.points[i].object != static_cast<int32_t>(paper)) continue;
+			const Eigen::Vector3d q = toTag * sim.points[i].local.cast<double>();
+			const int cx = static_cast<int>(std::floor((q.x() / size + 0.5) * cells));
+			const int cy = static_cast<int>(std::floor((q.y() / size + 0.5) * cells));
+			if (cx < 0 || cy < 0 || cx >= cells || cy >= cells) continue;
+			inSquare++;
+			hit[static_cast<size_t>(cy * cells + cx)] = 1;
+		}
+	}
+	const double n = static_cast<double>(hit.size());
+	return {static_cast<double>(std::count(hit.begin(), hit.end(), 1)) / n, static_cast<double>(inSquare) / n};
+}
+
+void printMisses(const sim::SimulationOutput& sim, const localize::ObserveReport& report,
+				 const std::vector<std::vector<TagDetection>>& seen, size_t window)
+{
+	const std::vector<double> bins = {0.01, 0.5, 0.9, 1.0};
+	std::printf("\nper tag: frames by the fraction of its border square's cells holding a point, seen / frames; "
+				"for fully covered frames not seen, the nearest candidate's verdict\n");
+	std::map<std::string, size_t> allWhy;
+	size_t fullFrames = 0, fullSeen = 0;
+	for (size_t t = 0; t < sim.truth.size(); t++)
+	{
+		std::vector<size_t> frames(bins.size()), sighted(bins.size());
+		std::map<std::string, size_t> why;
+		std::vector<double> fullPerCell;
+		for (size_t k = 0; k < seen.size() && k < sim.frames.size() && k < report.perScan.size(); k++)
+		{
+			const Coverage cov = tagCoverage(sim, t, k, window);
+			if (cov.cellsHit < bins[0]) continue;
+			const size_t bin =
+				static_cast<size_t>(std::upper_bound(bins.begin(), bins.end(), cov.cellsHit) - bins.begin()) - 1;
+			const TagDetection truth = truthInSensorFrame({sim.truth[t]}, sim.frames[k])[0];
+			const bool found = std::any_of(seen[k].begin(), seen[k].end(), [&](const TagDetection& d) {
+				return d.family == truth.family && d.id == truth.id;
+			});
+			frames[bin]++;
+			sighted[bin] += found;
+			if (bin + 1 < bins.size()) continue;
+			fullPerCell.push_back(cov.pointsPerCell);
+			if (found) continue;
+			const CandidateReport* nearest = nullptr;
+			double best = 0.5 * truth.size;
+			for (const CandidateReport& c : report.perScan[k].candidates)
+			{
+				const double d = (c.center - truth.position()).norm();
+				if (d < best) best = d, nearest = &c;
+			}
+			why[nearest ? verdictName(nearest->verdict) : "not proposed"]++;
+		}
+		std::printf("  %s:%d  cells hit", sim.truth[t].family.c_str(), sim.truth[t].id);
+		for (size_t b = 0; b < bins.size(); b++)
+			std::printf("  %s%.0f%% %zu/%zu", b + 1 < bins.size() ? ">=" : "", 100 * bins[b], sighted[b], frames[b]);
+		std::printf("  (points per cell, median %.1f) | not seen:", quantile(fullPerCell, 0.5));
+		for (const auto& [name, n] : why) std::printf(" %s %zu", name.c_str(), n), allWhy[name] += n;
+		std::printf("\n");
+		fullFrames += frames.back();
+		fullSeen += sighted.back();
+	}
+	std::printf("every cell covered: %zu tag-frames, seen in %zu; not seen:", fullFrames, fullSeen);
+	for (const auto& [name, n] : allWhy) std::printf(" %s %zu", name.c_str(), n);
+	std::printf("\n");
+}
+
 void benchSensor(const SensorRun& s, const Options& opt)
 {
 	sim::Scene scene = sim::loadScene(TAGMAP_SOURCE_DIR "/share/scenes/localize_site.yaml", s.params);
@@ -120,7 +214,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 	params.families = parseFamilyList(opt.families);
 	params.threads = 1;
 	localize::ObserveParams observeParams;
-	observeParams.window = s.window;
+	observeParams.window = opt.window ? opt.window : s.window;
 	localize::ObserveReport report;
 	const mrpt::obs::CRawlog observed =
 		localize::observeRawlog(sim::toRawlog(sim), Pipeline(params), observeParams, &report);
@@ -133,7 +227,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 	std::map<std::string, size_t> verdicts;
 	for (const localize::ScanTiming& t : report.perScan)
 	{
-		for (Verdict v : t.candidates) verdicts[verdictName(v)]++;
+		for (const CandidateReport& c : t.candidates) verdicts[verdictName(c.verdict)]++;
 		ms.push_back(1000 * t.seconds);
 		points.push_back(static_cast<double>(t.points));
 		totalSeconds += t.seconds;
@@ -169,8 +263,9 @@ void benchSensor(const SensorRun& s, const Options& opt)
 		wrongId += ev.falseOf(FalseKind::WrongId);
 	}
 
-	std::printf("\n== %s: %zu scans, %.0f points per detection (median), families %s, 1 thread\n", s.label.c_str(),
-				report.perScan.size(), quantile(points, 0.5), opt.families.c_str());
+	std::printf("\n== %s, window %zu: %zu scans, %.0f points per detection (median), families %s, 1 thread\n",
+				s.label.c_str(), observeParams.window, report.perScan.size(), quantile(points, 0.5),
+				opt.families.c_str());
 	std::printf("detect ms per scan: median %.2f, p90 %.2f, max %.2f; %.1f scans/s (all scans)\n", quantile(ms, 0.5),
 				quantile(ms, 0.9), quantile(ms, 1.0), report.perScan.size() / std::max(totalSeconds, 1e-9));
 	std::printf("%-20s %10s %10s %10s\n", "stage", "median ms", "p90 ms", "items in");
@@ -190,13 +285,14 @@ void benchSensor(const SensorRun& s, const Options& opt)
 		std::printf("error / reported sigma (sqrt(e' C^-1 e / 3); ~0.9 at the median when honest): position median "
 					"%.2f, p90 %.2f; rotation median %.2f, p90 %.2f\n",
 					quantile(transNorm, 0.5), quantile(transNorm, 0.9), quantile(rotNorm, 0.5), quantile(rotNorm, 0.9));
+	if (opt.misses) printMisses(sim, report, seen, observeParams.window);
 }
 
 [[noreturn]] void usage(const char* why)
 {
 	std::fprintf(stderr,
 				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|livox|both] [--scans N] "
-				 "[--family LIST] [--seed S]\n",
+				 "[--family LIST] [--seed S] [--window N] [--misses]\n",
 				 why);
 	std::exit(2);
 }
@@ -208,11 +304,17 @@ int main(int argc, char** argv)
 	for (int i = 1; i < argc; i++)
 	{
 		const std::string a = argv[i];
+		if (a == "--misses")
+		{
+			opt.misses = true;
+			continue;
+		}
 		if (i + 1 >= argc) usage(("missing value after " + a).c_str());
 		const std::string v = argv[++i];
 		if (a == "--sensor" && (v == "spinning" || v == "livox" || v == "both")) opt.sensor = v;
 		else if (a == "--scans") opt.scans = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--family") opt.families = v;
+		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0) opt.window = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--seed") opt.seed = std::strtoull(v.c_str(), nullptr, 10);
 		else usage(("unknown option or value: " + a + " " + v).c_str());
 	}
@@ -220,7 +322,7 @@ int main(int argc, char** argv)
 	{
 		const std::vector<SensorRun> runs = {
 			{"spinning 64 x 512, 10 Hz", "robot", {{"robot_beams", 64}, {"robot_columns", 512}}, 1},
-			{"livox 0.1 s frames, window 3", "robot_livox", {}, 3},
+			{"livox 0.1 s frames", "robot_livox", {}, 3},
 		};
 		for (const SensorRun& s : runs)
 			if (opt.sensor == "both" || s.run == (opt.sensor == "spinning" ? "robot" : "robot_livox")) benchSensor(s, opt);

@@ -134,6 +134,13 @@ TEST(LocalizeTagPosesObservation, SerializationRoundTripAndText)
 
 namespace
 {
+/** The hall's six tags, at irregular places on its walls. */
+std::vector<TagDetection> hallTags()
+{
+	return {tag(0, pose(0, 1.3, 1.5, 0, 90)),	 tag(1, pose(0, 6.1, 1.2, 0, 90)),	tag(2, pose(5.2, 8, 1.6, -90, 90)),
+			tag(3, pose(12.7, 8, 1.4, -90, 90)), tag(4, pose(16, 2.4, 1.5, 180, 90)), tag(5, pose(9.5, 0, 1.3, 90, 90))};
+}
+
 /** A robot driving a lap of a 16 x 8 m hall with six tags at irregular
  *  places on its walls (a regular layout would have mirror solutions for a
  *  range-only filter); exact odometry, ranges and tag poses. */
@@ -175,9 +182,7 @@ class LocalizeParticleFilterModel : public ::testing::TestWithParam<PfObservatio
 
 TEST_P(LocalizeParticleFilterModel, ConvergesFromUniformAndReportsEveryStep)
 {
-	const std::vector<TagDetection> mapTags = {
-		tag(0, pose(0, 1.3, 1.5, 0, 90)),   tag(1, pose(0, 6.1, 1.2, 0, 90)),  tag(2, pose(5.2, 8, 1.6, -90, 90)),
-		tag(3, pose(12.7, 8, 1.4, -90, 90)), tag(4, pose(16, 2.4, 1.5, 180, 90)), tag(5, pose(9.5, 0, 1.3, 90, 90))};
+	const std::vector<TagDetection> mapTags = hallTags();
 	std::vector<mrpt::poses::CPose2D> truth;
 	const std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
 	PfParams params;
@@ -243,6 +248,70 @@ TEST(LocalizeParticleFilter, WithoutOdometryTheTagPosesStillTrack)
 		sum2 += std::pow(std::hypot(got.x() - lidar.x(), got.y() - lidar.y()), 2);
 	}
 	EXPECT_LT(std::sqrt(sum2 / static_cast<double>(n)), 0.05);
+}
+
+namespace
+{
+double lidarError(const PfResult& r, const std::vector<LocalizationStep>& steps,
+				  const std::vector<mrpt::poses::CPose2D>& truth, size_t k)
+{
+	const mrpt::poses::CPose3D lidar = mrpt::poses::CPose3D(truth[k]) + steps[k].sensorPose;
+	const Eigen::Vector3d got = r.trajectory[k].pose.translation();
+	return std::hypot(got.x() - lidar.x(), got.y() - lidar.y());
+}
+}  // namespace
+
+TEST(LocalizeParticleFilter, TheFirstTagAfterAGapPullsTheBeliefBack)
+{
+	// One tag in view at a time (the nearest), none in steps 25-44, and
+	// odometry that overstates every move by 8 % and turns 0.4 deg a step
+	// too far: the gap leaves the belief decimetres off. The first tagged
+	// scan must bring it back (sensor resetting); the annealed update alone
+	// moves it only by about a step's motion noise (measured: 27.5 -> 1.7 cm
+	// with resetting, 24.3 -> 21.1 cm without).
+	const std::vector<TagDetection> mapTags = hallTags();
+	std::vector<mrpt::poses::CPose2D> truth;
+	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
+	for (size_t k = 0; k < steps.size(); k++)
+	{
+		LocalizationStep& s = steps[k];
+		s.odometry = mrpt::poses::CPose2D(1.08 * s.odometry.x(), 1.08 * s.odometry.y(),
+										  s.odometry.phi() + 0.4 * M_PI / 180);
+		std::vector<TagDetection>& seen = s.tags->tags;
+		std::sort(seen.begin(), seen.end(), [](const TagDetection& a, const TagDetection& b) {
+			return a.position().norm() < b.position().norm();
+		});
+		seen.resize(k >= 25 && k < 45 ? 0 : 1);
+	}
+	PfParams params;
+	const PfResult r = runParticleFilter(mapTags, steps, params);
+	ASSERT_GE(r.convergedAtStep, 0);
+	ASSERT_LT(r.convergedAtStep, 10);
+	EXPECT_GT(lidarError(r, steps, truth, 44), 0.10) << "the gap must leave the belief off for this test to mean anything";
+	EXPECT_LT(lidarError(r, steps, truth, 45), 0.03);
+
+	params.resetFraction = 0;
+	const PfResult without = runParticleFilter(mapTags, steps, params);
+	EXPECT_GT(lidarError(without, steps, truth, 45), 0.10) << "without resetting one tag should not suffice";
+}
+
+TEST(LocalizeParticleFilter, AMisreadTagDoesNotMoveAConvergedBelief)
+{
+	// Step 50 sees one tag only, and reads it as another map tag's id: the
+	// pose it implies is metres away. Resetting must not draw particles
+	// there (the gate), and the update treats it as an outlier.
+	const std::vector<TagDetection> mapTags = hallTags();
+	std::vector<mrpt::poses::CPose2D> truth;
+	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
+	std::vector<TagDetection>& seen = steps[50].tags->tags;
+	seen.resize(1);
+	seen[0].id = (seen[0].id + 3) % 6;
+	PfParams params;
+	params.globalParticles = 20000;
+	const PfResult r = runParticleFilter(mapTags, steps, params);
+	ASSERT_GE(r.convergedAtStep, 0);
+	ASSERT_LT(r.convergedAtStep, 3);
+	for (size_t k = 49; k < 53; k++) EXPECT_LT(lidarError(r, steps, truth, k), 0.02) << "step " << k;
 }
 
 TEST(LocalizeParticleFilter, FewerGlobalThanTrackingParticles)

@@ -61,6 +61,37 @@ TEST(SimDrift, ScaleMultipliesDrift)
 	EXPECT_GT(e3, 2 * e1);  // same noise draws, three times the step sigma (rotation makes it not exactly 3x)
 }
 
+TEST(SimDrift, SystematicOdometryErrorActsOnTheCarrier)
+{
+	// No random drift: 10 m straight in 1 m steps by a base carrying its
+	// sensor 0.5 m ahead, turned 90 deg. The base's odometry (drifted sensor
+	// pose * mount^-1) must read every step 2 % long and turned 1 deg.
+	DriftParams p;
+	p.translationPerSqrtM = p.rotationDegPerSqrtM = p.translationPerSqrtS = p.rotationDegPerSqrtS = 0;
+	Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
+	mount.translation() = Eigen::Vector3d(0.5, 0, 1);
+	mount.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+	auto steps = straightLine(10, 10);
+	for (auto& s : steps)
+	{
+		s.truePose = s.truePose * mount;
+		s.mount = mount;
+		s.scaleError = 0.02;
+		s.headingBiasRadPerM = M_PI / 180;
+	}
+	const auto d = driftPoses(steps, p, 1);
+	for (size_t k = 1; k < d.size(); k++)
+	{
+		const Eigen::Isometry3d move = (d[k - 1] * mount.inverse()).inverse() * (d[k] * mount.inverse());
+		EXPECT_NEAR(move.translation().norm(), 1.02, 1e-9) << "step " << k;
+		EXPECT_NEAR(Eigen::AngleAxisd(move.linear()).angle(), M_PI / 180, 1e-9) << "step " << k;
+	}
+	// Without the errors the poses are the true ones, exactly.
+	for (auto& s : steps) s.scaleError = s.headingBiasRadPerM = 0;
+	const auto exact = driftPoses(steps, p, 1);
+	for (size_t k = 0; k < exact.size(); k++) EXPECT_TRUE(exact[k].isApprox(steps[k].truePose, 1e-12));
+}
+
 TEST(SimDrift, MergedMapUsesDriftedPosesAndFramesStayExact)
 {
 	const Scene scene = parseScene(

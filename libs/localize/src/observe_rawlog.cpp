@@ -56,9 +56,8 @@ class Observer
 		tags->timestamp = scanObs.timestamp;
 		tags->sensorPose = sensorPose;
 		Detections found = pipeline_.detect(merged);
-		std::vector<Verdict> verdicts;
-		for (const CandidateReport& c : found.candidates) verdicts.push_back(c.verdict);
-		report_.perScan.push_back({merged.size(), found.totalSeconds, std::move(found.stages), std::move(verdicts)});
+		report_.perScan.push_back(
+			{merged.size(), found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
 		tags->tags = std::move(found.tags);
 
 		auto ranges = makeBeaconRanges(tags->tags, sensorPose, params_.ranges);

@@ -9,10 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <mrpt/maps/CMultiMetricMap.h>
 
+#include "tagmap/localize/tag_relocalization.h"
 #include "tagmap/maps/CTagMap.h"
 
 namespace tagmap::localize
@@ -150,6 +152,85 @@ mrpt::obs::CActionCollection jitterOf(const Spread& spread, const PfParams& para
 	return movementAction(mrpt::poses::CPose2D(), m);
 }
 
+/** Where the scan's tags alone put the robot's base: the relocalized sensor
+ *  pose (tag_relocalization.h), moved by `mount^-1`, on the ground plane. */
+class TagFix
+{
+   public:
+	using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+	TagFix(const PoseWithCovariance& sensor, const mrpt::poses::CPose3D& mount)
+		: sensor_(sensor),
+		  mountInv_(mount.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen().inverse()),
+		  sqrtCov_(sensor.covariance.llt().matrixL())
+	{
+	}
+
+	/** The base pose for a draw `d` of [x y z | rx ry rz] from the unit
+	 *  normal: the sensor pose perturbed as its covariance says. */
+	mrpt::poses::CPose2D base(const Vector6d& d) const
+	{
+		const Vector6d e = sqrtCov_ * d;
+		Eigen::Isometry3d s = sensor_.pose;
+		const double angle = e.tail<3>().norm();
+		if (angle > 0) s.linear() = Eigen::AngleAxisd(angle, e.tail<3>() / angle).toRotationMatrix() * s.linear();
+		s.translation() += e.head<3>();
+		const Eigen::Matrix4d b = s.matrix() * mountInv_;
+		return {b(0, 3), b(1, 3), std::atan2(b(1, 0), b(0, 0))};
+	}
+	mrpt::poses::CPose2D base() const { return base(Vector6d::Zero()); }
+
+   private:
+	PoseWithCovariance sensor_;
+	Eigen::Matrix4d mountInv_;
+	Eigen::Matrix<double, 6, 6> sqrtCov_;
+};
+
+/** Sensor resetting (Lenser and Veloso 2000; the dual proposal of Thrun et
+ *  al.'s Mixture MCL): a fraction of the particles is drawn where the
+ *  scan's tags alone put the robot, before the update weighs them all. A
+ *  belief that locked on some centimetres off (a uniform start's first
+ *  sighting, the end of a gap on odometry) otherwise moves towards the tags
+ *  only by each step's motion noise: the update cannot choose a pose no
+ *  particle holds (Livox run: 20 cm after the first tag, still 4 cm seven
+ *  tagged scans later). The draws keep their slots' weights: Mixture MCL
+ *  would weigh them by the predicted belief, which undoes the reset exactly
+ *  when that belief is confidently wrong (odometry worse than the motion
+ *  model: test TheFirstTagAfterAGapPullsTheBeliefBack, 21 cm instead of
+ *  1.7 cm). Once converged, a fix the predicted belief makes implausible
+ *  (Mahalanobis^2 over both covariances above `resetGate`: a misread or
+ *  wrongly mapped tag) is not drawn at all. Returns the particles drawn. */
+size_t resetFromTags(mrpt::slam::CMonteCarloLocalization2D& pdf, const TagFix& fix, bool gated, const PfParams& params)
+{
+	const size_t n = pdf.size(), m = static_cast<size_t>(params.resetFraction * static_cast<double>(n));
+	if (m == 0) return 0;
+	auto& rng = mrpt::random::getRandomGenerator();
+	std::vector<mrpt::poses::CPose2D> draws(m);
+	for (auto& d : draws)
+	{
+		TagFix::Vector6d u;
+		for (int k = 0; k < 6; k++) u(k) = rng.drawGaussian1D_normalized();
+		d = fix.base(u);
+	}
+	if (gated)
+	{
+		const mrpt::poses::CPose2D at = fix.base();
+		Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+		for (const auto& d : draws)
+		{
+			const Eigen::Vector3d e(d.x() - at.x(), d.y() - at.y(), mrpt::math::wrapToPi(d.phi() - at.phi()));
+			cov += e * e.transpose() / static_cast<double>(m);
+		}
+		const auto [beliefCov, belief] = pdf.getCovarianceAndMean();
+		const Eigen::Vector3d diff(at.x() - belief.x(), at.y() - belief.y(),
+								   mrpt::math::wrapToPi(at.phi() - belief.phi()));
+		cov += beliefCov.asEigen();
+		if (diff.dot(cov.ldlt().solve(diff)) > params.resetGate) return 0;
+	}
+	for (size_t j = 0; j < m; j++) pdf.m_particles[j * n / m].d = draws[j].asTPose();
+	return m;
+}
+
 /** Tag poses, one step: predict, then update in passes with the likelihood
  *  as wide as the belief, narrowing as the belief does (annealing), until it
  *  stops narrowing. One update at the final width would leave a uniform
@@ -158,10 +239,12 @@ mrpt::obs::CActionCollection jitterOf(const Spread& spread, const PfParams& para
  *  outlier there); a broad update alone would leave a broad estimate. */
 Spread updateWithPoses(mrpt::bayes::CParticleFilter& pf, mrpt::slam::CMonteCarloLocalization2D& pdf,
 					   maps::TTagLikelihoodOptions& o, const mrpt::obs::CActionCollection& actions,
-					   const mrpt::obs::CSensoryFrame& sf, const PfParams& params)
+					   const mrpt::obs::CSensoryFrame& sf, const std::optional<TagFix>& fix, bool converged,
+					   const PfParams& params)
 {
 	const mrpt::obs::CSensoryFrame none;
 	pf.executeOn(pdf, &actions, &none);
+	if (fix) resetFromTags(pdf, *fix, converged, params);
 	Spread spread = spreadOf(pdf);
 	mrpt::poses::CPose2D mean;
 	pdf.getMean(mean);
@@ -223,7 +306,10 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 		if (params.observations == PfObservations::tagPoses)
 		{
 			if (!s.tags->tags.empty()) sf.insert(s.tags);
-			spread = updateWithPoses(pf, pdf, tagMap->likelihoodOptions, actions, sf, params);
+			const auto sensor = relocalize(mapTags, s.tags->tags);
+			const std::optional<TagFix> fix = sensor ? std::optional<TagFix>(TagFix(*sensor, s.sensorPose)) : std::nullopt;
+			spread = updateWithPoses(pf, pdf, tagMap->likelihoodOptions, actions, sf, fix, r.convergedAtStep >= 0,
+									 params);
 		}
 		else
 		{

@@ -6,6 +6,23 @@
 
 namespace tagmap::sim
 {
+namespace
+{
+// The sensor's motion `odom` as a carrier with the step's systematic error
+// would report it: the carrier's move (mount * odom * mount^-1) lengthened
+// by the scale error and turned by the heading bias over its length.
+Eigen::Isometry3d biased(const Eigen::Isometry3d& odom, const DriftStep& s)
+{
+	if (s.scaleError == 0 && s.headingBiasRadPerM == 0) return odom;
+	Eigen::Isometry3d carrier = s.mount * odom * s.mount.inverse();
+	const double dist = carrier.translation().norm();
+	carrier.translation() *= 1 + s.scaleError;
+	carrier.linear() = Eigen::AngleAxisd(s.headingBiasRadPerM * dist, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+					   carrier.linear();
+	return s.mount.inverse() * carrier * s.mount;
+}
+}  // namespace
+
 std::vector<Eigen::Isometry3d> driftPoses(const std::vector<DriftStep>& steps, const DriftParams& p, uint64_t seed)
 {
 	std::vector<Eigen::Isometry3d> out;
@@ -17,7 +34,7 @@ std::vector<Eigen::Isometry3d> driftPoses(const std::vector<DriftStep>& steps, c
 			out.push_back(steps[0].truePose);
 			continue;
 		}
-		const Eigen::Isometry3d odom = steps[k - 1].truePose.inverse() * steps[k].truePose;
+		const Eigen::Isometry3d odom = biased(steps[k - 1].truePose.inverse() * steps[k].truePose, steps[k]);
 		const double dist = odom.translation().norm();
 		const double dt = std::max(0.0, steps[k].seconds);
 		const double s = steps[k].scale;

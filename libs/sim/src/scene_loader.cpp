@@ -1,6 +1,7 @@
 #include "tagmap/sim/scene_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -168,7 +169,8 @@ TagSpec parseTag(const YamlReader& r)
 
 ScanRun parseRun(const YamlReader& r, const std::vector<SensorSpec>& sensors)
 {
-	r.allowKeys({"name", "sensor", "waypoints", "duration", "drift_scale", "deskew_residual", "mount"});
+	r.allowKeys({"name", "sensor", "waypoints", "duration", "drift_scale", "deskew_residual", "mount",
+				 "odometry_scale_error", "odometry_heading_bias_deg_per_m"});
 	ScanRun run;
 	run.name = r.text("name", r.path());
 	const std::string sensor = r.text("sensor");
@@ -193,6 +195,11 @@ ScanRun parseRun(const YamlReader& r, const std::vector<SensorSpec>& sensors)
 	run.driftScale = r.positive("drift_scale", 1, true);
 	run.deskewResidual = r.number("deskew_residual", 0);
 	if (run.deskewResidual < 0 || run.deskewResidual > 1) r.child("deskew_residual").fail("must be within 0..1");
+	run.odometryScaleError = r.number("odometry_scale_error", 0);
+	if (std::abs(run.odometryScaleError) >= 0.5) r.child("odometry_scale_error").fail("must be within -0.5..0.5");
+	run.odometryHeadingBiasDegPerM = r.number("odometry_heading_bias_deg_per_m", 0);
+	if (std::abs(run.odometryHeadingBiasDegPerM) > 90)
+		r.child("odometry_heading_bias_deg_per_m").fail("must be within -90..90");
 	if (r.has("mount"))
 	{
 		const YamlReader m = r.child("mount");

@@ -164,7 +164,11 @@ SimulationOutput simulate(const Scene& sceneIn, const SimOptions& options, const
 	for (size_t k = 0; k < frames.size(); k++)
 	{
 		steps[k].truePose = frames[k].truePose;
-		steps[k].scale = scene.runs[frames[k].run].driftScale;
+		const ScanRun& run = scene.runs[frames[k].run];
+		steps[k].scale = run.driftScale;
+		steps[k].scaleError = run.odometryScaleError;
+		steps[k].headingBiasRadPerM = run.odometryHeadingBiasDegPerM * M_PI / 180;
+		steps[k].mount = run.mount;
 		// Sensor-clock time between the frames' reference instants.
 		const auto mid = [&](size_t j) { return frames[j].clock + 0.5 * frames[j].duration; };
 		steps[k].seconds = k ? std::max(0.0, mid(k) - mid(k - 1)) : 0.0;

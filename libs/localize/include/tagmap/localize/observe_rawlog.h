@@ -38,7 +38,7 @@ struct ScanTiming
 	size_t points = 0;
 	double seconds = 0;  // Pipeline::detect alone, not reading or merging
 	std::vector<StageReport> stages;
-	std::vector<Verdict> candidates;  // what became of each candidate (Detections::candidates)
+	std::vector<CandidateReport> candidates;  // where each candidate was and what became of it (no images)
 };
 
 struct ObserveReport

@@ -13,7 +13,10 @@
 // (annealed particle filtering) until it stops narrowing; ranges get a std
 // that follows the position spread between the global and tracking values. Once position and
 // heading spreads are small (converged), the particle count drops to the
-// tracking count.
+// tracking count. With tag poses, each scan that sees a mapped tag also
+// draws a fraction of the particles where its tags alone put the robot
+// (sensor resetting), gated once converged so a misread tag cannot move
+// the belief.
 #pragma once
 
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -55,6 +58,13 @@ struct PfParams
 	double annealWidth = 2;
 	double globalRangeStd = 0.4;  // ranges: metres, likelihood while the belief is spread
 	double trackingRangeStd = 0.05;  // ranges: metres, once converged (>= detector range noise)
+	/** Tag poses: the fraction of the particles drawn, at each scan with a
+	 *  mapped tag, where its tags alone put the robot (sensor resetting, the
+	 *  dual proposal of Mixture MCL), and once converged only when that pose
+	 *  is within this Mahalanobis^2 of the predicted belief (3 DoF; 16.3:
+	 *  chi-square 0.999). 0: off. */
+	double resetFraction = 0.1;
+	double resetGate = 16.3;
 	double convergedSpread = 0.3;  // metres: position std (largest axis) that counts as converged
 	double convergedHeadingDeg = 5;  // and heading std
 	uint32_t seed = 1;

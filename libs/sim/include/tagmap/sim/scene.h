@@ -86,6 +86,13 @@ struct ScanRun
 	 *  odometry is then the carrier's and each scan's sensor pose this mount,
 	 *  as a robot's driver writes them. Identity: the waypoints are the sensor. */
 	Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
+	/** Systematic odometry error of the carrier, on top of the random drift:
+	 *  a wheel radius off by this fraction (every move's length scaled by
+	 *  1 + it) and a wheelbase error that turns the heading this much per
+	 *  metre driven. Wheel odometry has both; a random walk alone averages
+	 *  out where a bias keeps pulling one way. */
+	double odometryScaleError = 0;
+	double odometryHeadingBiasDegPerM = 0;
 };
 
 /** SLAM-like drift of the poses used to merge frames: a random walk whose
