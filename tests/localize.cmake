@@ -4,6 +4,7 @@
 # within 1 cm and 0.3 degrees.
 tagmap_test(test_localize
   SOURCES unit/test_localize.cpp unit/test_localize_odometry.cpp unit/test_localize_single_scan.cpp
+          unit/test_localize_window.cpp
   LIBS tagmap_localize tagmap_sim tagmap_maps)
 
 add_test(NAME localize_e2e

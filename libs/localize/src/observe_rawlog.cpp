@@ -9,6 +9,7 @@
 #include "tagmap/localize/rawlog_odometry.h"
 #include "tagmap/localize/rawlog_visit.h"
 #include "tagmap/localize/scan_tags.h"
+#include "tagmap/localize/window_disagreement.h"
 #include "tagmap/obs/CObservationTagPoses.h"
 #include "tagmap/quantile.h"
 
@@ -48,7 +49,8 @@ class Observer
 		if (!scan) return {};
 		mrpt::poses::CPose3D sensorPose;
 		scanObs.getSensorPose(sensorPose);
-		const mrpt::maps::CPointsMapXYZI merged = mergeWindow(std::move(*scan), sensorPose);
+		std::vector<size_t> scanStarts;
+		const mrpt::maps::CPointsMapXYZI merged = mergeWindow(std::move(*scan), sensorPose, scanStarts);
 		pointsDetected_ += merged.size();
 
 		auto tags = obs::CObservationTagPoses::Create();
@@ -56,6 +58,10 @@ class Observer
 		tags->timestamp = scanObs.timestamp;
 		tags->sensorPose = sensorPose;
 		Detections found = pipeline_.detect(merged);
+		// Merged scans were placed by drifting odometry: the tag is as
+		// uncertain as they disagree (window_disagreement.h).
+		for (TagDetection& t : found.tags)
+			addPositionUncertainty(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
 		report_.perScan.push_back(
 			{merged.size(), found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
 		tags->tags = std::move(found.tags);
@@ -80,13 +86,20 @@ class Observer
 		mrpt::maps::CPointsMapXYZI points;  // in its sensor frame
 	};
 
-	/** This scan and the window's earlier ones, in this scan's sensor frame. */
-	mrpt::maps::CPointsMapXYZI mergeWindow(mrpt::maps::CPointsMapXYZI scan, const mrpt::poses::CPose3D& sensorPose)
+	/** This scan and the window's earlier ones, in this scan's sensor frame;
+	 *  `scanStarts` gets the index of each one's first point. */
+	mrpt::maps::CPointsMapXYZI mergeWindow(mrpt::maps::CPointsMapXYZI scan, const mrpt::poses::CPose3D& sensorPose,
+										   std::vector<size_t>& scanStarts)
 	{
+		scanStarts = {0};
 		if (params_.window <= 1) return scan;
 		const mrpt::poses::CPose3D sensorNow = mrpt::poses::CPose3D(odometry_.pose()) + sensorPose;
 		mrpt::maps::CPointsMapXYZI merged = scan;
-		for (const PastScan& past : window_) merged.insertAnotherMap(&past.points, past.sensorInOdometry - sensorNow);
+		for (const PastScan& past : window_)
+		{
+			scanStarts.push_back(merged.size());
+			merged.insertAnotherMap(&past.points, past.sensorInOdometry - sensorNow);
+		}
 		window_.push_back({sensorNow, std::move(scan)});
 		if (window_.size() >= params_.window) window_.pop_front();
 		return merged;

@@ -27,7 +27,9 @@ struct ObserveParams
 	 *  ~10 k points) holds too few points on a tag 4-10 m away to decode;
 	 *  a window of a few frames fills it in, while the odometry's drift over
 	 *  that time (cm/m) stays below the tag's cell size. Without odometry
-	 *  in the rawlog a window > 1 is an error: the scans cannot be placed. */
+	 *  in the rawlog a window > 1 is an error: the scans cannot be placed.
+	 *  A merged tag's position covariance also carries how much the scans
+	 *  disagree about it (window_disagreement.h). */
 	size_t window = 1;
 };
 
