@@ -61,7 +61,7 @@ class Observer
 		// Merged scans were placed by drifting odometry: the tag is as
 		// uncertain as they disagree (window_disagreement.h).
 		for (TagDetection& t : found.tags)
-			addPositionUncertainty(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
+			addMisregistration(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
 		report_.perScan.push_back(
 			{merged.size(), found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
 		tags->tags = std::move(found.tags);

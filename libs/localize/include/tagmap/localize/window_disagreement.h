@@ -6,13 +6,23 @@
 // mean: 2-16 mm on the Livox run at window 3, while the detection's
 // covariance, from the points alone, said 0.4-1.9 mm (tagmap-bench-observe:
 // error over sigma 4-10 at the median). The scans themselves show the
-// misregistration: along the tag's normal each scan's points give the
-// plane's offset to a fraction of the range noise, and those offsets agree
-// only as well as the scans were placed. That spread, less what the range
-// noise alone would make of it, is taken as the misregistration in every
-// direction (odometry drift has no preferred axis here), and added to the
-// tag's position covariance. No odometry noise model is needed, and a
-// window whose scans line up adds nothing.
+// misregistration, each axis measured where the scan's points measure it:
+//   - along the tag's normal, each scan's points give the plane's offset
+//     (their mean distance from the tag's plane);
+//   - in the tag's plane, each scan's points alone are fitted to the tag's
+//     bitmap from the merged pose (pattern_refinement.h), which gives the
+//     scan's shift with its own covariance (scans whose points fit the
+//     bitmap worse than a detected tag must do not vote). The fits' turns
+//     are not used: on the car park's sparse frames they scattered by
+//     5-16 deg, far beyond both their own covariance and any drift.
+// The orientation is left as the merged points give it: a heading drift
+// moves the tag by its range (seen in the position) but turns it only by
+// the drift itself, tenths of a degree.
+// The offsets agree only as well as the scans were placed: their spread
+// beyond what each scan's own uncertainty explains (the between-scan
+// variance of a random-effects model, DerSimonian-Laird) is the
+// misregistration, added to the tag's covariance in its own frame. No odometry noise model is needed, and
+// a window whose scans line up adds nothing.
 #pragma once
 
 #include <mrpt/maps/CPointsMapXYZI.h>
@@ -26,23 +36,32 @@ namespace tagmap::localize
 struct WindowDisagreementParams
 {
 	/** Points within this many surface-noise RMS of the tag's plane (and
-	 *  inside its border square) are the tag's. */
+	 *  inside its grid) are the tag's. */
 	double slabNoises = 4;
-	/** A scan with fewer points on the tag does not vote. */
-	size_t minPointsPerScan = 10;
+	/** A scan with fewer points on the tag does not vote (the pattern fit
+	 *  needs 20 to mean anything). */
+	size_t minPointsPerScan = 20;
 };
 
-/** The misregistration (metres, one axis) of the scans of `merged` as seen
- *  on `tag`: the points-weighted spread of each scan's mean offset along the
- *  tag's normal, less the spread the range noise explains; 0 when fewer than
- *  two scans hold enough points. `scanStarts`: the first point of each scan
- *  in `merged`, increasing (the last scan runs to the end). `surfaceNoise`:
- *  the RMS of a flat surface in these points (Detections::surfaceNoise). */
-double windowMisregistration(const TagDetection& tag, const mrpt::maps::CPointsMapXYZI& merged,
-							 const std::vector<size_t>& scanStarts, double surfaceNoise,
-							 const WindowDisagreementParams& params = {});
+/** Standard deviations of the scans' misregistration, in the tag's frame. */
+struct WindowMisregistration
+{
+	double alongNormal = 0;  // metres
+	double inPlaneX = 0, inPlaneY = 0;  // metres, along the tag's x and y
+	int scansCompared = 0;  // scans with enough points on the tag
+};
 
-/** Adds `sigma`^2 to the variance of each axis of the tag's position. */
-void addPositionUncertainty(TagDetection& tag, double sigma);
+/** The misregistration of the scans of `merged` as seen on `tag` (its pose
+ *  in `merged`'s frame); all 0 when fewer than two scans hold enough points.
+ *  `scanStarts`: the first point of each scan in `merged`, increasing (the
+ *  last scan runs to the end). `surfaceNoise`: the RMS of a flat surface in
+ *  these points (Detections::surfaceNoise). */
+WindowMisregistration windowMisregistration(const TagDetection& tag, const mrpt::maps::CPointsMapXYZI& merged,
+											const std::vector<size_t>& scanStarts, double surfaceNoise,
+											const WindowDisagreementParams& params = {});
+
+/** Adds the misregistration's variances to the tag's position covariance,
+ *  rotated from the tag's frame into the frame its pose maps into. */
+void addMisregistration(TagDetection& tag, const WindowMisregistration& m);
 
 }  // namespace tagmap::localize
