@@ -314,7 +314,8 @@ int main(int argc, char** argv)
 		if (a == "--sensor" && (v == "spinning" || v == "livox" || v == "both")) opt.sensor = v;
 		else if (a == "--scans") opt.scans = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--family") opt.families = v;
-		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0) opt.window = std::strtoul(v.c_str(), nullptr, 10);
+		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0)
+			opt.window = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--seed") opt.seed = std::strtoull(v.c_str(), nullptr, 10);
 		else usage(("unknown option or value: " + a + " " + v).c_str());
 	}

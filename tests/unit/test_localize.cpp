@@ -137,8 +137,9 @@ namespace
 /** The hall's six tags, at irregular places on its walls. */
 std::vector<TagDetection> hallTags()
 {
-	return {tag(0, pose(0, 1.3, 1.5, 0, 90)),	 tag(1, pose(0, 6.1, 1.2, 0, 90)),	tag(2, pose(5.2, 8, 1.6, -90, 90)),
-			tag(3, pose(12.7, 8, 1.4, -90, 90)), tag(4, pose(16, 2.4, 1.5, 180, 90)), tag(5, pose(9.5, 0, 1.3, 90, 90))};
+	return {tag(0, pose(0, 1.3, 1.5, 0, 90)),	tag(1, pose(0, 6.1, 1.2, 0, 90)),
+			tag(2, pose(5.2, 8, 1.6, -90, 90)), tag(3, pose(12.7, 8, 1.4, -90, 90)),
+			tag(4, pose(16, 2.4, 1.5, 180, 90)), tag(5, pose(9.5, 0, 1.3, 90, 90))};
 }
 
 /** A robot driving a lap of a 16 x 8 m hall with six tags at irregular
@@ -287,7 +288,7 @@ TEST(LocalizeParticleFilter, TheFirstTagAfterAGapPullsTheBeliefBack)
 	const PfResult r = runParticleFilter(mapTags, steps, params);
 	ASSERT_GE(r.convergedAtStep, 0);
 	ASSERT_LT(r.convergedAtStep, 10);
-	EXPECT_GT(lidarError(r, steps, truth, 44), 0.10) << "the gap must leave the belief off for this test to mean anything";
+	EXPECT_GT(lidarError(r, steps, truth, 44), 0.10) << "the gap must leave the belief off, or this test means nothing";
 	EXPECT_LT(lidarError(r, steps, truth, 45), 0.03);
 
 	params.resetFraction = 0;

@@ -159,11 +159,14 @@ class TagFix
    public:
 	using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-	TagFix(const PoseWithCovariance& sensor, const mrpt::poses::CPose3D& mount)
-		: sensor_(sensor),
-		  mountInv_(mount.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen().inverse()),
-		  sqrtCov_(sensor.covariance.llt().matrixL())
+	/** None without a relocalized pose, or with a covariance that is not
+	 *  positive definite (nothing to draw from). */
+	static std::optional<TagFix> of(const std::optional<PoseWithCovariance>& sensor, const mrpt::poses::CPose3D& mount)
 	{
+		if (!sensor) return std::nullopt;
+		const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(sensor->covariance);
+		if (llt.info() != Eigen::Success) return std::nullopt;
+		return TagFix(*sensor, mount, llt.matrixL());
 	}
 
 	/** The base pose for a draw `d` of [x y z | rx ry rz] from the unit
@@ -181,6 +184,13 @@ class TagFix
 	mrpt::poses::CPose2D base() const { return base(Vector6d::Zero()); }
 
    private:
+	TagFix(const PoseWithCovariance& sensor, const mrpt::poses::CPose3D& mount, const Eigen::Matrix<double, 6, 6>& sqrtCov)
+		: sensor_(sensor),
+		  mountInv_(mount.getHomogeneousMatrixVal<mrpt::math::CMatrixDouble44>().asEigen().inverse()),
+		  sqrtCov_(sqrtCov)
+	{
+	}
+
 	PoseWithCovariance sensor_;
 	Eigen::Matrix4d mountInv_;
 	Eigen::Matrix<double, 6, 6> sqrtCov_;
@@ -306,8 +316,7 @@ PfResult runParticleFilter(const std::vector<TagDetection>& mapTags, const std::
 		if (params.observations == PfObservations::tagPoses)
 		{
 			if (!s.tags->tags.empty()) sf.insert(s.tags);
-			const auto sensor = relocalize(mapTags, s.tags->tags);
-			const std::optional<TagFix> fix = sensor ? std::optional<TagFix>(TagFix(*sensor, s.sensorPose)) : std::nullopt;
+			const std::optional<TagFix> fix = TagFix::of(relocalize(mapTags, s.tags->tags), s.sensorPose);
 			spread = updateWithPoses(pf, pdf, tagMap->likelihoodOptions, actions, sf, fix, r.convergedAtStep >= 0,
 									 params);
 		}

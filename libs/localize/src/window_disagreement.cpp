@@ -21,8 +21,8 @@ struct Reading
  *  between-scan variance of a random-effects model, by DerSimonian and
  *  Laird's moment estimator (each reading weighed by its inverse variance,
  *  so a scan whose points barely constrain a quantity, a petal trace across
- *  the tag along its own direction, neither counts nor hides the others). 0 when
- *  the readings agree as well as their variances say they would. */
+ *  the tag along its own direction, neither counts nor hides the others).
+ *  0 when the readings agree as well as their variances say they would. */
 double spreadBeyondNoise(const std::vector<Reading>& r)
 {
 	constexpr double kTiny = 1e-18;  // a reading claiming no variance at all

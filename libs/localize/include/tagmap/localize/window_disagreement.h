@@ -6,23 +6,24 @@
 // mean: 2-16 mm on the Livox run at window 3, while the detection's
 // covariance, from the points alone, said 0.4-1.9 mm (tagmap-bench-observe:
 // error over sigma 4-10 at the median). The scans themselves show the
-// misregistration, each axis measured where the scan's points measure it:
+// misregistration, each axis where the scan's points measure it:
 //   - along the tag's normal, each scan's points give the plane's offset
 //     (their mean distance from the tag's plane);
 //   - in the tag's plane, each scan's points alone are fitted to the tag's
 //     bitmap from the merged pose (pattern_refinement.h), which gives the
 //     scan's shift with its own covariance (scans whose points fit the
-//     bitmap worse than a detected tag must do not vote). The fits' turns
-//     are not used: on the car park's sparse frames they scattered by
-//     5-16 deg, far beyond both their own covariance and any drift.
+//     bitmap worse than a detected tag must do not vote).
+// The readings agree only as well as the scans were placed: their spread
+// beyond what each one's own variance explains (the between-scan variance
+// of a random-effects model, DerSimonian-Laird) is the misregistration,
+// added to the tag's position covariance in its own frame. No odometry
+// noise model is needed, and a window whose scans line up adds nothing.
+//
 // The orientation is left as the merged points give it: a heading drift
 // moves the tag by its range (seen in the position) but turns it only by
-// the drift itself, tenths of a degree.
-// The offsets agree only as well as the scans were placed: their spread
-// beyond what each scan's own uncertainty explains (the between-scan
-// variance of a random-effects model, DerSimonian-Laird) is the
-// misregistration, added to the tag's covariance in its own frame. No odometry noise model is needed, and
-// a window whose scans line up adds nothing.
+// the drift itself, tenths of a degree. The fits' turns are not used: on
+// the car park's sparse frames they scattered by 5-16 deg, far beyond both
+// their own covariance and any drift.
 #pragma once
 
 #include <mrpt/maps/CPointsMapXYZI.h>
