@@ -315,6 +315,38 @@ TEST(LocalizeParticleFilter, AMisreadTagDoesNotMoveAConvergedBelief)
 	for (size_t k = 49; k < 53; k++) EXPECT_LT(lidarError(r, steps, truth, k), 0.02) << "step " << k;
 }
 
+TEST(LocalizeParticleFilter, AMisreadFirstTagIsOvercome)
+{
+	// One tag in view at a time; the very first one is read as another map
+	// tag's id, so the uniform start locks on metres away. Before
+	// convergence resetting is not gated: the next scan's right tag draws
+	// particles at the truth, and the filter converges there (measured: 5.2
+	// cm at step 1, converged at step 2). Without resetting the wrong lock
+	// holds (5.2 m off at step 19, converged only at step 44).
+	const std::vector<TagDetection> mapTags = hallTags();
+	std::vector<mrpt::poses::CPose2D> truth;
+	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
+	for (size_t k = 0; k < steps.size(); k++)
+	{
+		std::vector<TagDetection>& seen = steps[k].tags->tags;
+		std::sort(seen.begin(), seen.end(), [](const TagDetection& a, const TagDetection& b) {
+			return a.position().norm() < b.position().norm();
+		});
+		seen.resize(1);
+	}
+	steps[0].tags->tags[0].id = (steps[0].tags->tags[0].id + 3) % 6;
+	PfParams params;
+	const PfResult r = runParticleFilter(mapTags, steps, params);
+	EXPECT_GT(lidarError(r, steps, truth, 0), 1.0) << "the misread must mislead step 0, or this test means nothing";
+	ASSERT_GE(r.convergedAtStep, 0);
+	EXPECT_LT(r.convergedAtStep, 5);
+	for (size_t k = 3; k < 20; k++) EXPECT_LT(lidarError(r, steps, truth, k), 0.03) << "step " << k;
+
+	params.resetFraction = 0;
+	const PfResult without = runParticleFilter(mapTags, steps, params);
+	EXPECT_GT(lidarError(without, steps, truth, 10), 1.0) << "without resetting the wrong lock should hold";
+}
+
 TEST(LocalizeParticleFilter, FewerGlobalThanTrackingParticles)
 {
 	// MRPT 2.5's own resampling to a larger count reads past its array and
