@@ -109,6 +109,26 @@ TEST(Config, BadValueIsNamed)
 	EXPECT_NE(loadError("families: [tag99h99]\n").find("tag99h99"), std::string::npos);
 }
 
+TEST(Config, DeeplyNestedTextIsRefusedBeforeTheParser)
+{
+	// libfyaml crashed in its error report on the fuzzer's input
+	// (tests/fuzz/regressions/config/libfyaml-crashes-on-deep-nesting.yaml).
+	const std::string path = ::testing::TempDir() + "/tagmap_nested_config.yaml";
+	std::ofstream(path) << std::string(1600, '{') << "'x\n";
+	try
+	{
+		PipelineParams::fromYamlFile(path);
+		FAIL() << "no error";
+	}
+	catch (const tagmap::InputError& e)
+	{
+		EXPECT_NE(std::string(e.what()).find("nested deeper than 64 levels"), std::string::npos) << e.what();
+	}
+	// Real files nest a few levels: unchanged.
+	std::ofstream(path) << "candidates: {min_tag_size: 0.2, max_tag_size: 0.8}\nfamilies: [tag36h11]\n";
+	EXPECT_EQ(PipelineParams::fromYamlFile(path).candidates.maxTagSize, 0.8);
+}
+
 TEST(Config, FileErrorsNameTheFile)
 {
 	const std::string path = ::testing::TempDir() + "/tagmap_bad_config.yaml";

@@ -64,11 +64,33 @@ void checkUtf8(const std::string& text, const std::string& file)
 					 "not valid YAML: line " + std::to_string(line) + ", column " + std::to_string(column) +
 						 ": not UTF-8 text (byte offset " + std::to_string(bad) + ")");
 }
+/** Refuses flow collections nested deeper than any configuration or scene
+ *  needs: libfyaml (as of Debian 12) crashes in its own error report on some
+ *  invalid text nested about a thousand deep (fuzz_config: 1266 levels of
+ *  '{' with a stray quote; 133 levels of the same text were reported
+ *  cleanly). Brackets are counted as they come, quoted or not: a real file
+ *  stays far below the limit either way. */
+void checkNesting(const std::string& text, const std::string& file)
+{
+	constexpr int kMaxDepth = 64;
+	int depth = 0;
+	size_t line = 1;
+	for (const char c : text)
+	{
+		if (c == '\n') line++;
+		else if (c == '{' || c == '[') depth++;
+		else if ((c == '}' || c == ']') && depth > 0) depth--;
+		if (depth > kMaxDepth)
+			throw InputError(file, "", "not valid YAML: line " + std::to_string(line) + ": brackets nested deeper than " +
+										   std::to_string(kMaxDepth) + " levels");
+	}
+}
 }  // namespace
 
 mrpt::containers::yaml parseYamlText(const std::string& text, const std::string& file)
 {
 	checkUtf8(text, file);
+	checkNesting(text, file);
 	// MRPT 2.5.8 hands libfyaml's syntax errors to stderr and mostly returns
 	// a partial tree instead of throwing, which would turn a typo into a
 	// confusing "missing key" later. So stderr is captured while parsing and
