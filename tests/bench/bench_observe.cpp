@@ -132,7 +132,7 @@ Coverage tagCoverage(const sim::SimulationOutput& sim, size_t tag, size_t frame,
 	for (size_t w = 0; w < window && w <= frame; w++)
 	{
 		const sim::FrameData& f = sim.frames[frame - w];
-		const Eigen::Isometry3d toTag = (f.truePose.inverse() * sim.truth[tag].pose).inverse();
+		const Eigen::Isometry3d toTag = truthInSensorFrame({sim.truth[tag]}, f)[0].pose.inverse();
 		for (size_t i = f.firstPoint; i < f.firstPoint + f.pointCount; i++)
 		{
 			if (sim.points[i].object != static_cast<int32_t>(paper)) continue;

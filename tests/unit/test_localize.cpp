@@ -253,6 +253,19 @@ TEST(LocalizeParticleFilter, WithoutOdometryTheTagPosesStillTrack)
 
 namespace
 {
+// One tag in view at a time: each step keeps only its nearest tag.
+void keepNearestTagOnly(std::vector<LocalizationStep>& steps)
+{
+	for (LocalizationStep& s : steps)
+	{
+		std::vector<TagDetection>& seen = s.tags->tags;
+		std::sort(seen.begin(), seen.end(), [](const TagDetection& a, const TagDetection& b) {
+			return a.position().norm() < b.position().norm();
+		});
+		seen.resize(std::min<size_t>(seen.size(), 1));
+	}
+}
+
 double lidarError(const PfResult& r, const std::vector<LocalizationStep>& steps,
 				  const std::vector<mrpt::poses::CPose2D>& truth, size_t k)
 {
@@ -273,16 +286,13 @@ TEST(LocalizeParticleFilter, TheFirstTagAfterAGapPullsTheBeliefBack)
 	const std::vector<TagDetection> mapTags = hallTags();
 	std::vector<mrpt::poses::CPose2D> truth;
 	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
+	keepNearestTagOnly(steps);
 	for (size_t k = 0; k < steps.size(); k++)
 	{
 		LocalizationStep& s = steps[k];
 		s.odometry = mrpt::poses::CPose2D(1.08 * s.odometry.x(), 1.08 * s.odometry.y(),
 										  s.odometry.phi() + 0.4 * M_PI / 180);
-		std::vector<TagDetection>& seen = s.tags->tags;
-		std::sort(seen.begin(), seen.end(), [](const TagDetection& a, const TagDetection& b) {
-			return a.position().norm() < b.position().norm();
-		});
-		seen.resize(k >= 25 && k < 45 ? 0 : 1);
+		if (k >= 25 && k < 45) s.tags->tags.clear();
 	}
 	PfParams params;
 	const PfResult r = runParticleFilter(mapTags, steps, params);
@@ -326,14 +336,7 @@ TEST(LocalizeParticleFilter, AMisreadFirstTagIsOvercome)
 	const std::vector<TagDetection> mapTags = hallTags();
 	std::vector<mrpt::poses::CPose2D> truth;
 	std::vector<LocalizationStep> steps = hallLap(mapTags, truth);
-	for (size_t k = 0; k < steps.size(); k++)
-	{
-		std::vector<TagDetection>& seen = steps[k].tags->tags;
-		std::sort(seen.begin(), seen.end(), [](const TagDetection& a, const TagDetection& b) {
-			return a.position().norm() < b.position().norm();
-		});
-		seen.resize(1);
-	}
+	keepNearestTagOnly(steps);
 	steps[0].tags->tags[0].id = (steps[0].tags->tags[0].id + 3) % 6;
 	PfParams params;
 	const PfResult r = runParticleFilter(mapTags, steps, params);
