@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "synthetic_wall.h"
+#include "tagmap/io/point_cloud_io.h"
 #include "tagmap/pipeline.h"
 #include "tagmap/point_spacing.h"
 #include "tagmap/tag_pose.h"
@@ -175,4 +176,35 @@ TEST(IntermediatePlane, PixelsNeedNotBeFinerThanTheSmallestCell)
 	EXPECT_NEAR(fine.frame.pixel, p.pixelSpacings * s.spacing, 0.2 * p.pixelSpacings * s.spacing);
 	EXPECT_DOUBLE_EQ(capped.frame.pixel, 0.05 / p.pixelsPerCell);
 	EXPECT_LT(capped.gray.cols, 0.8 * fine.gray.cols);  // 0.8 m of wall: 160 px + padding, not 222
+}
+
+TEST(Pipeline, AFarSparseTagIsNotReadAsAnotherId)
+{
+	// Captured from `tagmap observe` on a simulated 64 x 512 robot scan
+	// (share/scenes/localize_site.yaml, run robot, scan 39): tag36h11:0 at
+	// 6.9 m, about one point per cell, cropped to 2.5 m around it, sensor
+	// frame. The image rendered from it decoded as tag36h11:422 (2 bits
+	// wrong by libapriltag's count, pattern fit 0.92); at the fitted pose 6
+	// of the 36 code cells hold no point (code_in_points.h), and over the
+	// 30 others a random pattern would match that well with P = 2.0e-3, over
+	// the budget of 1e-3. The tag may be missed; it must not be
+	// reported as another id (without the measured-cells check it was, with
+	// either family list).
+	const auto map = io::loadPointCloud(std::string(TAGMAP_SOURCE_DIR) + "/tests/data/far-sparse-tag0-misread-as-422.pcd");
+	for (const std::string families : {"tag36h11", ""})
+	{
+		PipelineParams p;
+		p.families = parseFamilyList(families);
+		const Detections found = Pipeline(p).detect(map);
+		for (const TagDetection& t : found.tags)
+			EXPECT_TRUE(t.family == "tag36h11" && t.id == 0) << t.family << ":" << t.id << " with families '" << families << "'";
+		// Searched alone, tag36h11 gives the read a budget it passes on the
+		// image; the measured cells are what reject it.
+		if (!families.empty())
+		{
+			EXPECT_TRUE(std::any_of(found.candidates.begin(), found.candidates.end(), [](const CandidateReport& c) {
+				return c.verdict == Verdict::CodeNotInPoints;
+			}));
+		}
+	}
 }

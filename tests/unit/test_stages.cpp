@@ -10,6 +10,7 @@
 #include "synthetic_wall.h"
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
+#include "tagmap/code_in_points.h"
 #include "tagmap/intensity_gradient.h"
 #include "tagmap/merge_detections.h"
 #include "tagmap/octree_gather.h"
@@ -518,6 +519,67 @@ TEST(ReadEvidence, WeakFamilyIsChanceAmongEveryFamilyButNotAloneWithItsBudget)
 	ReadEvidenceParams alone;
 	alone.chanceBudget = 0.01;
 	EXPECT_EQ(assessRead(d.img, d.read, 8, {"aruco_4x4_50"}, alone).rejection, std::nullopt);
+}
+
+TEST(ReadEvidence, CellsNoPointMeasuredAreErasuresNotEvidence)
+{
+	// The same exact read, with half the code cells unmeasured: the 18
+	// left match some code by chance with P = 587 x 8 / 2^18 = 0.018, far
+	// over the budget, even though the bit decoder counted 0 wrong bits over
+	// all 36 (its count is over the cells the image interpolated too).
+	DrawnRead d = drawTag("tag36h11", 7, [](int, int) { return uint8_t(220); });
+	d.read.hamming = 0;
+	const TagBitmap bm = renderTagBitmap("tag36h11", 7);
+	const std::vector<float> cells =
+		sampleCells(d.img, d.read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+	ASSERT_EQ(judgeCells(cells, "tag36h11", 7, 0, 8, {"tag36h11"}, {}).rejection, std::nullopt);
+	const ReadEvidence full = judgeCells(cells, "tag36h11", 7, 0, 8, {"tag36h11"}, {});
+	std::vector<bool> measured(cells.size(), true);
+	int erased = 0;
+	for (int r = 0; r < bm.cells; r++)
+		for (int c = 0; c < bm.cells; c++)
+		{
+			const bool code = r >= bm.borderStart + 1 && r < bm.borderStart + bm.borderCells - 1 &&
+							  c >= bm.borderStart + 1 && c < bm.borderStart + bm.borderCells - 1;
+			if (code && (r + c) % 2 == 0) measured[static_cast<size_t>(r * bm.cells + c)] = false, erased++;
+		}
+	ASSERT_EQ(erased, 18);
+	const ReadEvidence half = judgeCells(eraseUnmeasured(cells, measured), "tag36h11", 7, 0, 8, {"tag36h11"}, {});
+	EXPECT_EQ(half.erasures, 18);
+	EXPECT_NEAR(half.chance, 587 * 8 / 262144.0, 1e-9);
+	EXPECT_EQ(half.rejection, Verdict::ByChance);
+	EXPECT_LT(full.chance, 1e-7);
+}
+
+TEST(CodeInPoints, ACellIsMeasuredWhenAPointFallsInIt)
+{
+	// A 0.8 m tag36h11 (0.1 m cells) in the z = 0 plane at the origin; the
+	// grid (12 x 12 cells with the quiet zone) spans [-0.6, 0.6]^2, its
+	// top-left cell x, y in [-0.6, -0.5] x [0.5, 0.6].
+	TagDetection t;
+	t.family = "tag36h11";
+	t.id = 0;
+	t.size = 0.8;
+	t.pose = Eigen::Isometry3d::Identity();
+	const std::vector<float> xs = {-0.55f, -0.41f, 0.05f, 0.7f}, ys = {0.55f, 0.45f, -0.05f, 0.f}, zs(4, 0.f);
+	PlaneImage plane;
+	plane.inliers = {0, 1, 2, 3};
+	const std::vector<bool> m = cellsMeasuredByPoints(t, plane, xs.data(), ys.data(), zs.data());
+	const TagBitmap bm = renderTagBitmap("tag36h11", 0);
+	ASSERT_EQ(m.size(), bm.pixels.size());
+	const auto at = [&](int r, int c) { return m[static_cast<size_t>(r * bm.cells + c)]; };
+	EXPECT_TRUE(at(0, 0));  // the middle of the top-left cell
+	EXPECT_TRUE(at(1, 1));  // (-0.41, 0.45): near its cell's corner, still in it
+	EXPECT_TRUE(at(bm.cells / 2, bm.cells / 2));  // just right of and below the centre
+	EXPECT_EQ(std::count(m.begin(), m.end(), true), 3);  // (0.7, 0) is off the grid
+	// The tag 0.7 cells further along x: the grid starts at x = -0.53, so
+	// the first point is off it and the centre's point falls in the cell to
+	// the centre's left.
+	t.pose.translation() = Eigen::Vector3d(0.07, 0, 0);
+	const std::vector<bool> shifted = cellsMeasuredByPoints(t, plane, xs.data(), ys.data(), zs.data());
+	EXPECT_FALSE(shifted[0]);
+	EXPECT_TRUE(shifted[static_cast<size_t>(bm.cells / 2 * bm.cells + bm.cells / 2 - 1)]);
+	EXPECT_EQ(std::count(shifted.begin(), shifted.end(), true), 2);
 }
 
 TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)

@@ -9,6 +9,7 @@
 
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
+#include "tagmap/code_in_points.h"
 #include "tagmap/derived_lengths.h"
 #include "tagmap/intensity_gradient.h"
 #include "tagmap/image_variants.h"
@@ -373,7 +374,8 @@ class CandidateDecoder
 	}
 
 	// A read in 3D: pose, plane refit, the tag's own bitmap fitted to its
-	// points, the size asked for, the support plane. Verdict::Decoded and
+	// points, the size asked for, the code in the points themselves, the
+	// support plane. Verdict::Decoded and
 	// `t` when it holds.
 	Verdict verifyRead(const DecodedTag2D& d, const PlaneImage& plane, TagDetection& t) const
 	{
@@ -387,8 +389,22 @@ class CandidateDecoder
 		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return Verdict::PatternMismatch;
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for
+		if (!measuredCellsShowTheCode(d, plane, t)) return Verdict::CodeNotInPoints;
 		orientOnSupport(t, plane.planeRms);
 		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
+	}
+
+	// The read judged again with the cells no point measured erased
+	// (code_in_points.h): true when it still passes.
+	bool measuredCellsShowTheCode(const DecodedTag2D& d, const PlaneImage& plane, const TagDetection& t) const
+	{
+		const TagBitmap bm = renderTagBitmap(t.family, t.id);
+		const std::vector<float> image =
+			sampleCells(plane.gray, d.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+		const std::vector<float> cells =
+			eraseUnmeasured(image, cellsMeasuredByPoints(t, plane, m_.xs, m_.ys, m_.zs));
+		const ReadEvidence ev = judgeCells(cells, t.family, t.id, d.hamming, readOrientations_, searched_, p_.evidence);
+		return !ev.rejection;
 	}
 
 	bool sizeAsked(double measured) const

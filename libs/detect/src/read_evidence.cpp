@@ -59,6 +59,20 @@ double budgetPerFamily(const std::vector<std::string>& searched, const ReadEvide
 {
 	return p.chanceBudget / static_cast<double>(std::max<size_t>(searched.size(), 1));
 }
+
+// The verdict on counted evidence: chance first, then the border ring, then
+// the quiet zone.
+ReadEvidence withRejection(ReadEvidence e, const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	e.rejection = Verdict::ByChance;
+	if (e.chance > budgetPerFamily(searched, p)) return e;
+	e.rejection = Verdict::NoBorder;
+	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells) return e;
+	e.rejection = Verdict::NoQuietZone;
+	if (e.quietErrors > p.maxQuietErrorRate * e.quietCells) return e;
+	e.rejection.reset();
+	return e;
+}
 }  // namespace
 
 std::vector<std::string> acceptableFamilies(const std::vector<std::string>& requested, int orientations,
@@ -97,58 +111,65 @@ double chanceMatchProbability(int codes, int n, int wrong, int orientations)
 	return std::min(1.0, static_cast<double>(codes) * orientations * ball * std::pow(2.0, -n));
 }
 
-ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
-						const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+ReadEvidence judgeCells(const std::vector<float>& sample, const std::string& family, int id, int decoderHamming,
+						int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p)
 {
 	ReadEvidence e;
-	const TagFamilyInfo* info = findFamily(read.family);
-	const TagBitmap bm = renderTagBitmap(read.family, read.id);
-	const CellRoles& roles = rolesOf(read.family);
+	const CellRoles& roles = rolesOf(family);
 	e.codeBits = roles.codeBits;
 	e.rejection = Verdict::ByChance;
-	// Corners are in vertex order, so the samples come out upright.
-	const std::vector<float> sample = sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
-	if (sample.empty() || !info) return e;
+	const TagBitmap bm = renderTagBitmap(family, id);
+	if (sample.size() != bm.pixels.size()) return e;
 	double black = 0, white = 0;
 	int nb = 0, nw = 0;
-	for (size_t k = 0; k < sample.size(); k++) (bm.pixels[k] ? white : black) += sample[k], (bm.pixels[k] ? nw : nb)++;
-	black /= std::max(nb, 1);
-	white /= std::max(nw, 1);
+	for (size_t k = 0; k < sample.size(); k++)
+		if (!std::isnan(sample[k])) (bm.pixels[k] ? white : black) += sample[k], (bm.pixels[k] ? nw : nb)++;
+	if (nb == 0 || nw == 0) return e;
+	black /= nb;
+	white /= nw;
 	const double threshold = 0.5 * (black + white), unsure = p.erasureBand * (white - black);
+	int unmeasured = 0;  // code cells with no value at all
 	for (size_t k = 0; k < sample.size(); k++)
 	{
+		// An unmeasured cell is no evidence either way: an erasure of a code
+		// cell, and not counted among the border's or the margin's cells.
+		const bool measured = !std::isnan(sample[k]);
 		const bool readWhite = sample[k] > threshold, isWhite = bm.pixels[k] != 0;
 		switch (roles.role[k])
 		{
 			case 0:
 				// A cell this close to the threshold (blur, a sparse cell) is
 				// no evidence either way: an erasure, not an error.
-				if (std::abs(sample[k] - threshold) < unsure) e.erasures++;
+				unmeasured += !measured;
+				if (!measured || std::abs(sample[k] - threshold) < unsure) e.erasures++;
 				else e.bitErrors += readWhite != isWhite;
 				break;
-			case 1: e.borderCells++, e.borderErrors += readWhite; break;
-			default: e.quietCells++, e.quietErrors += !readWhite; break;
+			case 1: e.borderCells += measured, e.borderErrors += measured && readWhite; break;
+			default: e.quietCells += measured, e.quietErrors += measured && !readWhite; break;
 		}
 	}
-	const int codes = codesJudged(read.family, searched);
-	// A bit decoder's own count is the better one where it has it: it reads
-	// each cell from the edges it found, our samples from the cell middles.
 	// Erased cells match anything: only the others can tell a code from chance.
+	const int codes = codesJudged(family, searched);
 	e.chance = chanceMatchProbability(codes, e.codeBits - e.erasures, e.bitErrors, orientations);
 	// A bit decoder's own count may be the better one: it reads each cell
-	// from the edges it found, our samples come from the cell middles.
-	if (read.hamming >= 0 && chanceMatchProbability(codes, e.codeBits, read.hamming, orientations) < e.chance)
+	// from the edges it found, our samples come from the cell middles. Its
+	// errors may all lie among the measured cells.
+	const int measuredBits = e.codeBits - unmeasured;
+	if (decoderHamming >= 0 && chanceMatchProbability(codes, measuredBits, decoderHamming, orientations) < e.chance)
 	{
-		e.bitErrors = read.hamming, e.erasures = 0;
-		e.chance = chanceMatchProbability(codes, e.codeBits, read.hamming, orientations);
+		e.bitErrors = decoderHamming, e.erasures = unmeasured;
+		e.chance = chanceMatchProbability(codes, measuredBits, decoderHamming, orientations);
 	}
-	if (e.chance > budgetPerFamily(searched, p)) return e;
-	e.rejection = Verdict::NoBorder;
-	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells) return e;
-	e.rejection = Verdict::NoQuietZone;
-	if (e.quietErrors > p.maxQuietErrorRate * e.quietCells) return e;
-	e.rejection.reset();
-	return e;
+	return withRejection(e, searched, p);
+}
+
+ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
+						const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	const TagBitmap bm = renderTagBitmap(read.family, read.id);
+	// Corners are in vertex order, so the samples come out upright.
+	return judgeCells(sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells),
+					  read.family, read.id, read.hamming, orientations, searched, p);
 }
 
 }  // namespace tagmap

@@ -64,6 +64,14 @@ struct ReadEvidence
 ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
 						const std::vector<std::string>& searched, const ReadEvidenceParams& p);
 
+/** The same judgement on the cell values of a read of `family`:`id`
+ *  (row-major over its whole grid, as sampleCells()); NaN marks a cell
+ *  nothing measured, an erasure (code_in_points.h). `decoderHamming`: the
+ *  bit decoder's own count of wrong bits, or -1; when it makes the read
+ *  less likely by chance it is used, over the measured code cells. */
+ReadEvidence judgeCells(const std::vector<float>& cells, const std::string& family, int id, int decoderHamming,
+						int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p);
+
 /** The families of `requested` (in order) that a read can be accepted in:
  *  a read shows at most every code bit right and none erased, so a family
  *  whose exact read is already more likely than the budget by chance

@@ -25,6 +25,7 @@ enum class Verdict
 	NoQuietZone,
 	SizeMismatch,
 	PatternMismatch,
+	CodeNotInPoints,
 	WrongSide,
 	Decoded,
 };
@@ -36,7 +37,7 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 15> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 16> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
@@ -60,6 +61,9 @@ inline constexpr std::array<VerdictInfo, 15> kVerdicts = {{
 	 "decoded, but the decoded square is not a tag size asked for (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::PatternMismatch, "pattern_mismatch",
 	 "decoded, but the points disagree with the bitmap (refinement.min_pattern_fit)"},
+	{Verdict::CodeNotInPoints, "code_not_in_points",
+	 "decoded on the image, but the tag's own points, read cell by cell at the fitted pose, do not show that "
+	 "code beyond chance: the image's cells were interpolated (evidence.chance_budget)"},
 	{Verdict::WrongSide, "wrong_side",
 	 "decoded, but its printed face would look into the solid body behind it, with free space on its other "
 	 "side: the mirror image of a tag (front_side)"},

@@ -1,0 +1,38 @@
+#include "tagmap/code_in_points.h"
+
+#include <cmath>
+#include <limits>
+
+#include "tagmap/tag_family.h"
+
+namespace tagmap
+{
+std::vector<bool> cellsMeasuredByPoints(const TagDetection& t, const PlaneImage& plane, const float* xs,
+										const float* ys, const float* zs)
+{
+	const TagBitmap bm = renderTagBitmap(t.family, t.id);
+	const double cell = t.size / bm.borderCells;
+	// Cells from the grid's top-left corner to the tag's centre; grid rows
+	// run down, the tag frame's y up (as in the pattern fit's model).
+	const double toCentre = bm.borderStart + bm.borderCells / 2.0;
+	const Eigen::Isometry3d toTag = t.pose.inverse();
+	std::vector<bool> measured(bm.pixels.size(), false);
+	for (uint32_t i : plane.inliers)
+	{
+		const Eigen::Vector3d l = toTag * Eigen::Vector3d(xs[i], ys[i], zs[i]);
+		const double col = l.x() / cell + toCentre, row = -l.y() / cell + toCentre;
+		if (col < 0 || row < 0 || col >= bm.cells || row >= bm.cells) continue;
+		measured[static_cast<size_t>(row) * static_cast<size_t>(bm.cells) + static_cast<size_t>(col)] = true;
+	}
+	return measured;
+}
+
+std::vector<float> eraseUnmeasured(std::vector<float> cells, const std::vector<bool>& measured)
+{
+	if (cells.size() != measured.size()) return {};
+	for (size_t k = 0; k < cells.size(); k++)
+		if (!measured[k]) cells[k] = std::numeric_limits<float>::quiet_NaN();
+	return cells;
+}
+
+}  // namespace tagmap
