@@ -551,6 +551,27 @@ TEST(ReadEvidence, CellsNoPointMeasuredAreErasuresNotEvidence)
 	EXPECT_LT(full.chance, 1e-7);
 }
 
+TEST(ReadEvidence, KeepsTheCellsItJudgedForTheJudgementAgain)
+{
+	// The 3D check re-judges a read on the cells of the image variant it was
+	// read from (a blurred tag's raw image has grey cells its binarised
+	// variant does not): judged again with nothing erased, the verdict and
+	// the chance are the read's own.
+	DrawnRead d = drawTag("tag25h9", 12, [](int, int) { return uint8_t(220); });
+	d.read.hamming = -1;  // judged on its cells alone
+	cv::GaussianBlur(d.img, d.img, cv::Size(), 9);
+	cv::Mat binary;
+	cv::threshold(d.img, binary, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+	const ReadEvidence raw = assessRead(d.img, d.read, 8, {"tag25h9"}, {});
+	const ReadEvidence onBinary = assessRead(binary, d.read, 8, {"tag25h9"}, {});
+	ASSERT_EQ(onBinary.cells.size(), renderTagBitmap("tag25h9", 12).pixels.size());
+	EXPECT_GT(raw.erasures, onBinary.erasures);
+	const ReadEvidence again = judgeCells(onBinary.cells, "tag25h9", 12, -1, 8, {"tag25h9"}, {});
+	EXPECT_EQ(again.rejection, onBinary.rejection);
+	EXPECT_EQ(again.chance, onBinary.chance);
+	EXPECT_EQ(again.erasures, onBinary.erasures);
+}
+
 TEST(CodeInPoints, ACellIsMeasuredWhenAPointFallsInIt)
 {
 	// A 0.8 m tag36h11 (0.1 m cells) in the z = 0 plane at the origin; the

@@ -360,7 +360,7 @@ class CandidateDecoder
 				continue;
 			}
 			TagDetection t;
-			const Verdict v = verifyRead(d, plane, t);
+			const Verdict v = verifyRead(d, ev, plane, t);
 			if (v != Verdict::Decoded)
 			{
 				reject(out.report, v);
@@ -377,7 +377,7 @@ class CandidateDecoder
 	// points, the size asked for, the code in the points themselves, the
 	// support plane. Verdict::Decoded and
 	// `t` when it holds.
-	Verdict verifyRead(const DecodedTag2D& d, const PlaneImage& plane, TagDetection& t) const
+	Verdict verifyRead(const DecodedTag2D& d, const ReadEvidence& ev, const PlaneImage& plane, TagDetection& t) const
 	{
 		// A decode the size of a few points (a code read into text or a
 		// corner of a bigger pattern) is no tag of the sizes asked for.
@@ -389,22 +389,19 @@ class CandidateDecoder
 		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return Verdict::PatternMismatch;
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for
-		if (!measuredCellsShowTheCode(d, plane, t)) return Verdict::CodeNotInPoints;
+		if (!measuredCellsShowTheCode(d, ev, plane, t)) return Verdict::CodeNotInPoints;
 		orientOnSupport(t, plane.planeRms);
 		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
 	}
 
-	// The read judged again with the cells no point measured erased
-	// (code_in_points.h): true when it still passes.
-	bool measuredCellsShowTheCode(const DecodedTag2D& d, const PlaneImage& plane, const TagDetection& t) const
+	// The read judged again, on the cells of the image it was read from,
+	// with those no point falls in erased (code_in_points.h): true when it
+	// still passes.
+	bool measuredCellsShowTheCode(const DecodedTag2D& d, const ReadEvidence& ev, const PlaneImage& plane,
+								  const TagDetection& t) const
 	{
-		const TagBitmap bm = renderTagBitmap(t.family, t.id);
-		const std::vector<float> image =
-			sampleCells(plane.gray, d.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
-		const std::vector<float> cells =
-			eraseUnmeasured(image, cellsMeasuredByPoints(t, plane, m_.xs, m_.ys, m_.zs));
-		const ReadEvidence ev = judgeCells(cells, t.family, t.id, d.hamming, readOrientations_, searched_, p_.evidence);
-		return !ev.rejection;
+		const std::vector<float> cells = eraseUnmeasured(ev.cells, cellsMeasuredByPoints(t, plane, m_.xs, m_.ys, m_.zs));
+		return !judgeCells(cells, t.family, t.id, d.hamming, readOrientations_, searched_, p_.evidence).rejection;
 	}
 
 	bool sizeAsked(double measured) const

@@ -168,8 +168,10 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 {
 	const TagBitmap bm = renderTagBitmap(read.family, read.id);
 	// Corners are in vertex order, so the samples come out upright.
-	return judgeCells(sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells),
-					  read.family, read.id, read.hamming, orientations, searched, p);
+	std::vector<float> cells = sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+	ReadEvidence e = judgeCells(cells, read.family, read.id, read.hamming, orientations, searched, p);
+	e.cells = std::move(cells);
+	return e;
 }
 
 }  // namespace tagmap

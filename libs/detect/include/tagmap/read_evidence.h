@@ -52,6 +52,9 @@ struct ReadEvidence
 	int borderErrors = 0, borderCells = 0;  // black ring cells read white
 	int quietErrors = 0, quietCells = 0;  // white margin cells read dark
 	double chance = 1;  // probability of a match this good by chance
+	/** The cell values judged (row-major over the family's whole grid, as
+	 *  sampleCells()); empty when the grid left the image. */
+	std::vector<float> cells;
 	/** Nothing when accepted, else Verdict::ByChance, NoBorder or NoQuietZone. */
 	std::optional<Verdict> rejection;
 };
