@@ -117,3 +117,27 @@ TEST(Report, HtmlEscape)
 {
 	EXPECT_EQ(report::htmlEscape("<a href=\"x\">&'"), "&lt;a href=&quot;x&quot;&gt;&amp;&#39;");
 }
+
+TEST(Report, ARejectedCandidateListsEachReadAndWhyItFailed)
+{
+	// The candidate's verdict is its last read's; a user looking for a
+	// missed tag needs every read's.
+	Detections found = run().found;
+	CandidateReport c;
+	c.image = cv::Mat(64, 64, CV_8U, cv::Scalar(128));
+	c.verdict = Verdict::ByChance;
+	DecodedTag2D a, b;
+	a.family = "tag36h11", a.id = 422;
+	b.family = "aruco_6x6_1000", b.id = 623;
+	for (DecodedTag2D* d : {&a, &b})
+		d->corners = {Eigen::Vector2d(16, 16), Eigen::Vector2d(48, 16), Eigen::Vector2d(48, 48), Eigen::Vector2d(16, 48)};
+	c.decoded = {a, b};
+	c.readVerdicts = {Verdict::CodeNotInPoints, Verdict::ByChance};
+	found.candidates.push_back(c);
+	const fs::path dir = freshDir("tagmap_report_reads");
+	report::writeReport(dir.string(), {"walls.pcd", "synthetic", "tagmap detect walls.pcd", run().map, found,
+									   run().params});
+	EXPECT_EQ(count(readText(dir / "index.html"),
+					"by_chance (read tag36h11:422 code_not_in_points, aruco_6x6_1000:623 by_chance)"),
+			  1u);
+}

@@ -353,14 +353,13 @@ class CandidateDecoder
 		{
 			const ReadEvidence ev = assessRead(image, d, readOrientations_, searched_, p_.evidence);
 			for (auto& c : d.corners) c *= scale;
-			if (keepImages_) out.report.decoded.push_back(d);
-			if (ev.rejection)
-			{
-				reject(out.report, *ev.rejection);
-				continue;
-			}
 			TagDetection t;
-			const Verdict v = verifyRead(d, ev, plane, t);
+			const Verdict v = ev.rejection ? *ev.rejection : verifyRead(d, ev, plane, t);
+			if (keepImages_)
+			{
+				out.report.decoded.push_back(d);
+				out.report.readVerdicts.push_back(v);
+			}
 			if (v != Verdict::Decoded)
 			{
 				reject(out.report, v);

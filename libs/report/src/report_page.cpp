@@ -97,6 +97,11 @@ std::string candidateCaption(size_t index, const CandidateReport& c)
 {
 	std::string what = verdictName(c.verdict);
 	for (const auto& l : c.decodedLabels) what += " " + l;
+	// A rejected candidate's reads, each with its own reason.
+	if (c.verdict != Verdict::Decoded)
+		for (size_t k = 0; k < c.decoded.size() && k < c.readVerdicts.size(); k++)
+			what += (k == 0 ? " (read " : ", ") + tagLabel(c.decoded[k].family, c.decoded[k].id) + " " +
+					verdictName(c.readVerdicts[k]) + (k + 1 == c.decoded.size() ? ")" : "");
 	const char* cls = c.verdict == Verdict::Decoded ? "decoded" : "rejected";
 	return "<b class=\"" + std::string(cls) + "\">" + htmlEscape(format("#%zu ", index) + what) + "</b><br>" +
 		   htmlEscape(format("%zu cluster / %zu gathered points; box %.2f x %.2f x %.2f m at (%.2f, %.2f, %.2f)",

@@ -43,6 +43,9 @@ struct CandidateReport
 	// Filled only with Pipeline::detect(..., keepImages = true), for reports:
 	cv::Mat image;  // the intermediate-plane intensity image
 	std::vector<DecodedTag2D> decoded;  // what the decoders read on it
+	/** What became of each read of `decoded`: the candidate's own verdict
+	 *  is its last rejection when no read became a tag. */
+	std::vector<Verdict> readVerdicts;
 	std::vector<std::string> decodedLabels;  // "tag36h11:3" per accepted decode
 };
 
