@@ -373,9 +373,9 @@ class CandidateDecoder
 	}
 
 	// A read in 3D: pose, plane refit, the tag's own bitmap fitted to its
-	// points, the size asked for, the code in the points themselves, the
-	// support plane. Verdict::Decoded and
-	// `t` when it holds.
+	// points, the size asked for, the code on the cells the points measured,
+	// the support plane, the side it faces. Verdict::Decoded and `t` when it
+	// holds.
 	Verdict verifyRead(const DecodedTag2D& d, const ReadEvidence& ev, const PlaneImage& plane, TagDetection& t) const
 	{
 		// A decode the size of a few points (a code read into text or a

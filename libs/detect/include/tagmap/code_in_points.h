@@ -7,9 +7,9 @@
 // libapriltag counted 2 wrong bits over all 36; 6 of them held no point at
 // the fitted pose, and over the other 30 that read is chance, P = 2.0e-3).
 // A cell no point measured is no evidence, however clearly the image shows
-// it: the read's cell values (ReadEvidence::cells, from the image it was read on)
-// are judged again (read_evidence.h: the chance budget, the border ring,
-// the quiet zone) with those cells erased.
+// it: the read's cell values (ReadEvidence::cells, from the image it was
+// read on) are judged again (read_evidence.h: the chance budget, the border
+// ring, the quiet zone) with those cells erased.
 #pragma once
 
 #include <vector>
