@@ -534,14 +534,14 @@ TEST(ReadEvidence, CellsNoPointMeasuredAreErasuresNotEvidence)
 		sampleCells(d.img, d.read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
 	ASSERT_EQ(judgeCells(cells, "tag36h11", 7, 0, 8, {"tag36h11"}, {}).rejection, std::nullopt);
 	const ReadEvidence full = judgeCells(cells, "tag36h11", 7, 0, 8, {"tag36h11"}, {});
-	std::vector<bool> measured(cells.size(), true);
+	std::vector<float> measured(cells.size(), 1.f);  // the points' means: NaN where no point fell
 	int erased = 0;
 	for (int r = 0; r < bm.cells; r++)
 		for (int c = 0; c < bm.cells; c++)
 		{
 			const bool code = r >= bm.borderStart + 1 && r < bm.borderStart + bm.borderCells - 1 &&
 							  c >= bm.borderStart + 1 && c < bm.borderStart + bm.borderCells - 1;
-			if (code && (r + c) % 2 == 0) measured[static_cast<size_t>(r * bm.cells + c)] = false, erased++;
+			if (code && (r + c) % 2 == 0) measured[static_cast<size_t>(r * bm.cells + c)] = NAN, erased++;
 		}
 	ASSERT_EQ(erased, 18);
 	const ReadEvidence half = judgeCells(eraseUnmeasured(cells, measured), "tag36h11", 7, 0, 8, {"tag36h11"}, {});
@@ -572,7 +572,7 @@ TEST(ReadEvidence, KeepsTheCellsItJudgedForTheJudgementAgain)
 	EXPECT_EQ(again.erasures, onBinary.erasures);
 }
 
-TEST(CodeInPoints, ACellIsMeasuredWhenAPointFallsInIt)
+TEST(CodeInPoints, ACellHoldsTheMeanOfThePointsThatFallInIt)
 {
 	// A 0.8 m tag36h11 (0.1 m cells) in the z = 0 plane at the origin; the
 	// grid (12 x 12 cells with the quiet zone) spans [-0.6, 0.6]^2, its
@@ -582,25 +582,46 @@ TEST(CodeInPoints, ACellIsMeasuredWhenAPointFallsInIt)
 	t.id = 0;
 	t.size = 0.8;
 	t.pose = Eigen::Isometry3d::Identity();
-	const std::vector<float> xs = {-0.55f, -0.41f, 0.05f, 0.7f}, ys = {0.55f, 0.45f, -0.05f, 0.f}, zs(4, 0.f);
+	const std::vector<float> xs = {-0.55f, -0.41f, 0.05f, 0.7f, 0.04f}, ys = {0.55f, 0.45f, -0.05f, 0.f, -0.02f},
+							 zs(5, 0.f), is = {0.9f, 0.5f, 0.2f, 0.7f, 0.4f};
 	PlaneImage plane;
-	plane.inliers = {0, 1, 2, 3};
-	const std::vector<bool> m = cellsMeasuredByPoints(t, plane, xs.data(), ys.data(), zs.data());
+	plane.inliers = {0, 1, 2, 3, 4};
+	const std::vector<float> m = cellMeansFromPoints(t, plane, xs.data(), ys.data(), zs.data(), is.data());
 	const TagBitmap bm = renderTagBitmap("tag36h11", 0);
 	ASSERT_EQ(m.size(), bm.pixels.size());
 	const auto at = [&](int r, int c) { return m[static_cast<size_t>(r * bm.cells + c)]; };
-	EXPECT_TRUE(at(0, 0));  // the middle of the top-left cell
-	EXPECT_TRUE(at(1, 1));  // (-0.41, 0.45): near its cell's corner, still in it
-	EXPECT_TRUE(at(bm.cells / 2, bm.cells / 2));  // just right of and below the centre
-	EXPECT_EQ(std::count(m.begin(), m.end(), true), 3);  // (0.7, 0) is off the grid
+	EXPECT_FLOAT_EQ(at(0, 0), 0.9f);  // the middle of the top-left cell
+	EXPECT_FLOAT_EQ(at(1, 1), 0.5f);  // (-0.41, 0.45): near its cell's corner, still in it
+	EXPECT_FLOAT_EQ(at(bm.cells / 2, bm.cells / 2), 0.3f);  // two points right of and below the centre
+	EXPECT_EQ(std::count_if(m.begin(), m.end(), [](float v) { return !std::isnan(v); }), 3);  // (0.7, 0): off the grid
 	// The tag 0.7 cells further along x: the grid starts at x = -0.53, so
-	// the first point is off it and the centre's point falls in the cell to
+	// the first point is off it and the centre's points fall in the cell to
 	// the centre's left.
 	t.pose.translation() = Eigen::Vector3d(0.07, 0, 0);
-	const std::vector<bool> shifted = cellsMeasuredByPoints(t, plane, xs.data(), ys.data(), zs.data());
-	EXPECT_FALSE(shifted[0]);
-	EXPECT_TRUE(shifted[static_cast<size_t>(bm.cells / 2 * bm.cells + bm.cells / 2 - 1)]);
-	EXPECT_EQ(std::count(shifted.begin(), shifted.end(), true), 2);
+	const std::vector<float> shifted = cellMeansFromPoints(t, plane, xs.data(), ys.data(), zs.data(), is.data());
+	EXPECT_TRUE(std::isnan(shifted[0]));
+	EXPECT_FLOAT_EQ(shifted[static_cast<size_t>(bm.cells / 2 * bm.cells + bm.cells / 2 - 1)], 0.3f);
+	EXPECT_EQ(std::count_if(shifted.begin(), shifted.end(), [](float v) { return !std::isnan(v); }), 2);
+}
+
+TEST(ReadEvidence, ARealTagsReadIsNearerItsOwnCodeThanAnyOther)
+{
+	// tag36h11:0's cells as its points would read them, judged as id 0 and
+	// as a rival id: its own code is nearest (0 bits), every other code
+	// turned the family's 11 bits or more away (mirror images are not part
+	// of its design: the nearest is 6 bits away); judged as the rival, the
+	// read is nearer tag 0 than the rival.
+	const TagBitmap own = renderTagBitmap("tag36h11", 0);
+	std::vector<float> cells(own.pixels.size());
+	for (size_t k = 0; k < cells.size(); k++) cells[k] = own.pixels[k] ? 0.8f : 0.1f;
+	const CodeDistances asOwn = codeDistances(cells, "tag36h11", 0, 8, {});
+	EXPECT_EQ(asOwn.toOwn, 0);
+	EXPECT_GE(asOwn.toNearestOther, 1);
+	EXPECT_GE(codeDistances(cells, "tag36h11", 0, 4, {}).toNearestOther, 11);
+	const CodeDistances asRival = codeDistances(cells, "tag36h11", 422, 8, {});
+	EXPECT_GE(asRival.toOwn, 11);
+	EXPECT_EQ(asRival.toNearestOther, 0);
+	EXPECT_EQ(asRival.nearestOtherId, 0);
 }
 
 TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)

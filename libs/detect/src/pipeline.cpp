@@ -393,14 +393,20 @@ class CandidateDecoder
 		return facesFreeSpace(t) ? Verdict::Decoded : Verdict::WrongSide;
 	}
 
-	// The read judged again, on the cells of the image it was read from,
-	// with those no point falls in erased (code_in_points.h): true when it
-	// still passes.
+	// The code in the points, not only in the image (code_in_points.h): the
+	// read judged again on the cells of the image it was read from with
+	// those no point falls in erased, and the points' own read nearer the
+	// decoded code than any other code. True when both hold.
 	bool measuredCellsShowTheCode(const DecodedTag2D& d, const ReadEvidence& ev, const PlaneImage& plane,
 								  const TagDetection& t) const
 	{
-		const std::vector<float> cells = eraseUnmeasured(ev.cells, cellsMeasuredByPoints(t, plane, m_.xs, m_.ys, m_.zs));
-		return !judgeCells(cells, t.family, t.id, d.hamming, readOrientations_, searched_, p_.evidence).rejection;
+		const std::vector<float> points = cellMeansFromPoints(t, plane, m_.xs, m_.ys, m_.zs, m_.is);
+		if (judgeCells(eraseUnmeasured(ev.cells, points), t.family, t.id, d.hamming, readOrientations_, searched_,
+					   p_.evidence)
+				.rejection)
+			return false;
+		const CodeDistances c = codeDistances(points, t.family, t.id, readOrientations_, p_.evidence);
+		return c.toOwn < c.toNearestOther;
 	}
 
 	bool sizeAsked(double measured) const

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "tagmap/tag_family.h"
+#include "tagmap/tag_quads.h"
 
 namespace tagmap
 {
@@ -58,6 +59,46 @@ int codesJudged(const std::string& family, const std::vector<std::string>& searc
 double budgetPerFamily(const std::vector<std::string>& searched, const ReadEvidenceParams& p)
 {
 	return p.chanceBudget / static_cast<double>(std::max<size_t>(searched.size(), 1));
+}
+
+// Where a read's cell values turn from black to white: halfway between the
+// cells its code calls black and those it calls white (no intensity scale
+// assumed), and the band around it too close to call. `ok` false when a
+// colour has no measured cell.
+struct CellThreshold
+{
+	double threshold = 0, unsure = 0;
+	bool ok = false;
+};
+
+CellThreshold thresholdOf(const std::vector<float>& sample, const TagBitmap& bm, const ReadEvidenceParams& p)
+{
+	CellThreshold th;
+	double black = 0, white = 0;
+	int nb = 0, nw = 0;
+	for (size_t k = 0; k < sample.size(); k++)
+		if (!std::isnan(sample[k])) (bm.pixels[k] ? white : black) += sample[k], (bm.pixels[k] ? nw : nb)++;
+	if (nb == 0 || nw == 0) return th;
+	black /= nb;
+	white /= nw;
+	th.threshold = 0.5 * (black + white);
+	th.unsure = p.erasureBand * (white - black);
+	th.ok = true;
+	return th;
+}
+
+// Every code of a family as its bitmap, cached: the nearest-code search
+// compares a read with all of them.
+const std::vector<std::vector<uint8_t>>& familyCodes(const std::string& family)
+{
+	static std::mutex mutex;
+	static std::map<std::string, std::unique_ptr<std::vector<std::vector<uint8_t>>>> cache;
+	std::lock_guard<std::mutex> lock(mutex);
+	auto& slot = cache[family];
+	if (slot) return *slot;
+	slot = std::make_unique<std::vector<std::vector<uint8_t>>>();
+	for (int id = 0; id < findFamily(family)->idCount; id++) slot->push_back(renderTagBitmap(family, id).pixels);
+	return *slot;
 }
 
 // The verdict on counted evidence: chance first, then the border ring, then
@@ -120,14 +161,9 @@ ReadEvidence judgeCells(const std::vector<float>& sample, const std::string& fam
 	e.rejection = Verdict::ByChance;
 	const TagBitmap bm = renderTagBitmap(family, id);
 	if (sample.size() != bm.pixels.size()) return e;
-	double black = 0, white = 0;
-	int nb = 0, nw = 0;
-	for (size_t k = 0; k < sample.size(); k++)
-		if (!std::isnan(sample[k])) (bm.pixels[k] ? white : black) += sample[k], (bm.pixels[k] ? nw : nb)++;
-	if (nb == 0 || nw == 0) return e;
-	black /= nb;
-	white /= nw;
-	const double threshold = 0.5 * (black + white), unsure = p.erasureBand * (white - black);
+	const CellThreshold th = thresholdOf(sample, bm, p);
+	if (!th.ok) return e;
+	const double threshold = th.threshold, unsure = th.unsure;
 	int unmeasured = 0;  // code cells with no value at all
 	for (size_t k = 0; k < sample.size(); k++)
 	{
@@ -161,6 +197,50 @@ ReadEvidence judgeCells(const std::vector<float>& sample, const std::string& fam
 		e.chance = chanceMatchProbability(codes, measuredBits, decoderHamming, orientations);
 	}
 	return withRejection(e, searched, p);
+}
+
+CodeDistances codeDistances(const std::vector<float>& cells, const std::string& family, int id, int orientations,
+							const ReadEvidenceParams& p)
+{
+	CodeDistances d;
+	const TagBitmap bm = renderTagBitmap(family, id);
+	if (cells.size() != bm.pixels.size()) return d;
+	const CellThreshold th = thresholdOf(cells, bm, p);
+	if (!th.ok) return d;
+	// The code cells the read shows clearly, and their colours.
+	const CellRoles& roles = rolesOf(family);
+	std::vector<size_t> clear;
+	std::vector<uint8_t> white(cells.size(), 0);
+	for (size_t k = 0; k < cells.size(); k++)
+		if (roles.role[k] == 0 && !std::isnan(cells[k]) && std::abs(cells[k] - th.threshold) >= th.unsure)
+			clear.push_back(k), white[k] = cells[k] > th.threshold;
+	for (size_t k : clear) d.toOwn += white[k] != (bm.pixels[k] != 0);
+	// Every other code in every orientation: the read in orientation o shows
+	// cell perm[k] of the read where the code has cell k.
+	d.toNearestOther = static_cast<int>(clear.size()) + 1;
+	const std::vector<std::vector<uint8_t>>& codes = familyCodes(family);
+	for (int o = 0; o < orientations; o++)
+	{
+		const std::vector<int>& perm = cellPermutation(bm.cells, o);
+		std::vector<int> inverse(perm.size());
+		for (size_t k = 0; k < perm.size(); k++) inverse[static_cast<size_t>(perm[k])] = static_cast<int>(k);
+		for (size_t other = 0; other < codes.size(); other++)
+		{
+			if (static_cast<int>(other) == id && o == 0) continue;
+			// A code that, turned, is the read's own code cell for cell (the
+			// original ArUco dictionary has such pairs) is no rival: no read
+			// can tell them apart, and the decoder's choice is the family's.
+			bool same = true;
+			for (size_t k = 0; k < cells.size() && same; k++)
+				same = roles.role[k] != 0 || (codes[other][static_cast<size_t>(inverse[k])] != 0) == (bm.pixels[k] != 0);
+			if (same) continue;
+			int dist = 0;
+			for (size_t k : clear)
+				if ((dist += white[k] != (codes[other][static_cast<size_t>(inverse[k])] != 0)) >= d.toNearestOther) break;
+			if (dist < d.toNearestOther) d.toNearestOther = dist, d.nearestOtherId = static_cast<int>(other);
+		}
+	}
+	return d;
 }
 
 ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,

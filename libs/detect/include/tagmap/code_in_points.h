@@ -9,7 +9,9 @@
 // A cell no point measured is no evidence, however clearly the image shows
 // it: the read's cell values (ReadEvidence::cells, from the image it was
 // read on) are judged again (read_evidence.h: the chance budget, the border
-// ring, the quiet zone) with those cells erased.
+// ring, the quiet zone) with those cells erased; and the points' own read,
+// cell by cell, must be nearer the decoded code than any other
+// (codeDistances: that 422 read is 1 bit from 422, 0 from tag 0).
 #pragma once
 
 #include <vector>
@@ -20,15 +22,16 @@
 namespace tagmap
 {
 /** For each cell of t's grid at its (fitted) pose and size, row-major as the
- *  family's bitmap: does one of the plane's inlier points fall in it?
- *  (Counting only points in a cell's middle, away from where a footprint
- *  straddles two cells, lost 13 of 120 and 7 of 45 sightings of
- *  tagmap-bench-observe; any point in the cell, 1 and 1.) */
-std::vector<bool> cellsMeasuredByPoints(const TagDetection& t, const PlaneImage& plane, const float* xs,
-										const float* ys, const float* zs);
+ *  family's bitmap: the mean intensity of the plane's inlier points that
+ *  fall in it, NaN where none does. (Counting only points in a cell's
+ *  middle, away from where a footprint straddles two cells, lost 13 of 120
+ *  and 7 of 45 sightings of tagmap-bench-observe; any point in the cell, 1
+ *  and 1.) */
+std::vector<float> cellMeansFromPoints(const TagDetection& t, const PlaneImage& plane, const float* xs, const float* ys,
+									   const float* zs, const float* is);
 
-/** `cells` (a read's cell values) with those no point measured set to NaN:
- *  erasures for judgeCells(). */
-std::vector<float> eraseUnmeasured(std::vector<float> cells, const std::vector<bool>& measured);
+/** `cells` (a read's cell values) with those no point measured (NaN in
+ *  `pointMeans`) set to NaN: erasures for judgeCells(). */
+std::vector<float> eraseUnmeasured(std::vector<float> cells, const std::vector<float>& pointMeans);
 
 }  // namespace tagmap

@@ -75,6 +75,22 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 ReadEvidence judgeCells(const std::vector<float>& cells, const std::string& family, int id, int decoderHamming,
 						int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p);
 
+/** Hamming distances, over the code cells a read shows clearly (as
+ *  judgeCells() calls them: NaN or within the erasure band are left out),
+ *  from the read to its own code and to the nearest other code of the
+ *  family in any of `orientations` orientations (4 rotations, x2 mirrored;
+ *  its own code turned counts as other, a code that turned is its own code
+ *  cell for cell does not). A read nearer another code than its own, or as
+ *  near, is not a read of it. */
+struct CodeDistances
+{
+	int toOwn = 0;
+	int toNearestOther = 0;
+	int nearestOtherId = -1;
+};
+CodeDistances codeDistances(const std::vector<float>& cells, const std::string& family, int id, int orientations,
+							const ReadEvidenceParams& p);
+
 /** The families of `requested` (in order) that a read can be accepted in:
  *  a read shows at most every code bit right and none erased, so a family
  *  whose exact read is already more likely than the budget by chance
