@@ -207,13 +207,17 @@ CodeDistances codeDistances(const std::vector<float>& cells, const std::string& 
 	if (cells.size() != bm.pixels.size()) return d;
 	const CellThreshold th = thresholdOf(cells, bm, p);
 	if (!th.ok) return d;
-	// The code cells the read shows clearly, and their colours.
+	// The code cells, and those the read shows clearly with their colours.
 	const CellRoles& roles = rolesOf(family);
-	std::vector<size_t> clear;
+	std::vector<size_t> codeCells, clear;
 	std::vector<uint8_t> white(cells.size(), 0);
 	for (size_t k = 0; k < cells.size(); k++)
-		if (roles.role[k] == 0 && !std::isnan(cells[k]) && std::abs(cells[k] - th.threshold) >= th.unsure)
-			clear.push_back(k), white[k] = cells[k] > th.threshold;
+		if (roles.role[k] == 0)
+		{
+			codeCells.push_back(k);
+			if (!std::isnan(cells[k]) && std::abs(cells[k] - th.threshold) >= th.unsure)
+				clear.push_back(k), white[k] = cells[k] > th.threshold;
+		}
 	for (size_t k : clear) d.toOwn += white[k] != (bm.pixels[k] != 0);
 	// Every other code in every orientation: the read in orientation o shows
 	// cell perm[k] of the read where the code has cell k.
@@ -227,17 +231,17 @@ CodeDistances codeDistances(const std::vector<float>& cells, const std::string& 
 		for (size_t other = 0; other < codes.size(); other++)
 		{
 			if (static_cast<int>(other) == id && o == 0) continue;
+			const auto codeWhite = [&](size_t k) { return codes[other][static_cast<size_t>(inverse[k])] != 0; };
+			int dist = 0;
+			for (size_t k : clear)
+				if ((dist += white[k] != codeWhite(k)) >= d.toNearestOther) break;
+			if (dist >= d.toNearestOther) continue;
 			// A code that, turned, is the read's own code cell for cell (the
 			// original ArUco dictionary has such pairs) is no rival: no read
 			// can tell them apart, and the decoder's choice is the family's.
-			bool same = true;
-			for (size_t k = 0; k < cells.size() && same; k++)
-				same = roles.role[k] != 0 || (codes[other][static_cast<size_t>(inverse[k])] != 0) == (bm.pixels[k] != 0);
-			if (same) continue;
-			int dist = 0;
-			for (size_t k : clear)
-				if ((dist += white[k] != (codes[other][static_cast<size_t>(inverse[k])] != 0)) >= d.toNearestOther) break;
-			if (dist < d.toNearestOther) d.toNearestOther = dist, d.nearestOtherId = static_cast<int>(other);
+			const bool same = std::all_of(codeCells.begin(), codeCells.end(),
+										  [&](size_t k) { return codeWhite(k) == (bm.pixels[k] != 0); });
+			if (!same) d.toNearestOther = dist, d.nearestOtherId = static_cast<int>(other);
 		}
 	}
 	return d;
