@@ -21,7 +21,7 @@ namespace
 {
 const char* kUsage =
 	"Usage: tagmap observe IN.rawlog OUT.rawlog [--family F] [--tag-size S] [--config FILE]\n"
-	"                      [--window N] [--threads N] [--quiet]\n"
+	"                      [--window N] [--sensor-view] [--threads N] [--quiet]\n"
 	"Detects the tags in every LiDAR scan of IN (sensor frame) and writes OUT: IN with,\n"
 	"next to each scan, a CObservationBeaconRanges (range to each tag centre, beacon IDs\n"
 	"as in docs/MRPT.md) and a tagmap::obs::CObservationTagPoses (T_sensor_tag + 6x6\n"
@@ -30,6 +30,9 @@ const char* kUsage =
 	"  --window N       detect on each scan merged with the N-1 scans before it, placed by the\n"
 	"                   rawlog's odometry (default 1: every scan alone). For short frames too\n"
 	"                   sparse to decode a tag (a 0.1 s Livox frame): e.g. 3-5 (docs/LOCALIZATION.md)\n"
+	"  --sensor-view    candidates from each scan's own spherical view, read by the decoders\n"
+	"                   (faster on sparse scans; docs/LOCALIZATION.md for when it sees more\n"
+	"                   or fewer tags than the default map path)\n"
 	"  --quiet          print nothing but errors (default: progress on stderr and a summary line)\n";
 
 }  // namespace
@@ -37,7 +40,7 @@ const char* kUsage =
 int runObserve(int argc, char** argv)
 {
 	return cli::runCommand("observe", [&] {
-		const cli::Args a = cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window"}), {"--help", "--quiet"});
+		const cli::Args a = cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window"}), {"--help", "--quiet", "--sensor-view"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage << pipelineOptionsHelp();
@@ -46,7 +49,8 @@ int runObserve(int argc, char** argv)
 		if (a.positional.size() != 2) throw cli::UsageError("expected IN.rawlog and OUT.rawlog");
 		const std::string in = a.positional[0], out = a.positional[1];
 		// Single-scan parameters unless a config file replaces them; the flags win.
-		const PipelineParams params = pipelineParamsFromArgs(a, localize::singleScanPipelineParams());
+		PipelineParams params = pipelineParamsFromArgs(a, localize::singleScanPipelineParams());
+		if (a.has("--sensor-view")) params.sensorView.enabled = true;
 		checkOutputWritable(out);
 		const bool quiet = a.has("--quiet");
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));

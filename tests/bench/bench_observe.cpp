@@ -8,12 +8,16 @@
 // costs a sighting or accuracy shows.
 //
 // Sensors (share/scenes/localize_site.yaml, the localization demo's site):
-//   spinning  a 64-beam x 512-column LiDAR at 10 Hz (~33 k points a scan)
+//   spinning  a 64-beam x 512-column LiDAR at 10 Hz (~25 k points a scan)
+//   spinning128  the localization demo's 128-beam x 1024-column one (~130 k)
 //   livox     the Livox-like rosette, 0.1 s frames (~10 k points), each merged
 //             with the 2 before it by the odometry (observe --window 3: ~30 k)
 //
-//   build/bin/tagmap-bench-observe [--sensor spinning|livox|both] [--scans N]
+//   build/bin/tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N]
 //                                  [--family LIST] [--seed S] [--window N] [--misses]
+//                                  [--sensor-view]
+// `both` is spinning and livox. --sensor-view: candidates from each scan's
+// own view (sensor_view.h) instead of the map path's stages 1-3.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -47,6 +51,7 @@ struct Options
 	uint64_t seed = 1;
 	size_t window = 0;  // 0: each sensor's own (spinning 1, Livox 3)
 	bool misses = false;  // explain every tag with points in the window that was not seen
+	bool sensorView = false;  // candidates from the scan's own view (sensor_view.h)
 };
 
 struct SensorRun
@@ -213,6 +218,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 	PipelineParams params = localize::singleScanPipelineParams();
 	params.families = parseFamilyList(opt.families);
 	params.threads = 1;
+	params.sensorView.enabled = opt.sensorView;
 	localize::ObserveParams observeParams;
 	observeParams.window = opt.window ? opt.window : s.window;
 	localize::ObserveReport report;
@@ -291,8 +297,8 @@ void benchSensor(const SensorRun& s, const Options& opt)
 [[noreturn]] void usage(const char* why)
 {
 	std::fprintf(stderr,
-				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|livox|both] [--scans N] "
-				 "[--family LIST] [--seed S] [--window N] [--misses]\n",
+				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N] "
+				 "[--family LIST] [--seed S] [--window N] [--misses] [--sensor-view]\n",
 				 why);
 	std::exit(2);
 }
@@ -304,14 +310,14 @@ int main(int argc, char** argv)
 	for (int i = 1; i < argc; i++)
 	{
 		const std::string a = argv[i];
-		if (a == "--misses")
+		if (a == "--misses" || a == "--sensor-view")
 		{
-			opt.misses = true;
+			(a == "--misses" ? opt.misses : opt.sensorView) = true;
 			continue;
 		}
 		if (i + 1 >= argc) usage(("missing value after " + a).c_str());
 		const std::string v = argv[++i];
-		if (a == "--sensor" && (v == "spinning" || v == "livox" || v == "both")) opt.sensor = v;
+		if (a == "--sensor" && (v == "spinning" || v == "spinning128" || v == "livox" || v == "both")) opt.sensor = v;
 		else if (a == "--scans") opt.scans = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--family") opt.families = v;
 		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0)
@@ -321,12 +327,14 @@ int main(int argc, char** argv)
 	}
 	try
 	{
-		const std::vector<SensorRun> runs = {
-			{"spinning 64 x 512, 10 Hz", "robot", {{"robot_beams", 64}, {"robot_columns", 512}}, 1},
-			{"livox 0.1 s frames", "robot_livox", {}, 3},
+		const std::map<std::string, SensorRun> runs = {
+			{"spinning", {"spinning 64 x 512, 10 Hz", "robot", {{"robot_beams", 64}, {"robot_columns", 512}}, 1}},
+			{"spinning128", {"spinning 128 x 1024, 10 Hz", "robot", {}, 1}},
+			{"livox", {"livox 0.1 s frames", "robot_livox", {}, 3}},
 		};
-		for (const SensorRun& s : runs)
-			if (opt.sensor == "both" || s.run == (opt.sensor == "spinning" ? "robot" : "robot_livox")) benchSensor(s, opt);
+		for (const std::string name : {"spinning", "spinning128", "livox"})
+			if (opt.sensor == name || (opt.sensor == "both" && name != "spinning128"))
+				benchSensor(runs.at(name), opt);
 	}
 	catch (const std::exception& e)
 	{

@@ -16,9 +16,11 @@
 #include "tagmap/octree_gather.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/read_evidence.h"
+#include "tagmap/sensor_view.h"
 #include "tagmap/support_plane.h"
 #include "tagmap/surface_noise.h"
 #include "tagmap/tag_family.h"
+#include "tagmap/tag_decoder.h"
 #include "tagmap/tag_pose.h"
 #include "tagmap/tag_quads.h"
 #include "tagmap/voxel_grid.h"
@@ -656,4 +658,62 @@ TEST(ReadEvidence, WindowGridHasNoQuietZone)
 			if (quiet && (r % 24 < 6 || c % 24 < 6)) grid.img.at<uint8_t>(r, c) = 25;
 		}
 	EXPECT_EQ(assessRead(grid.img, grid.read, 8, kEveryFamily, {}).rejection, Verdict::NoQuietZone);
+}
+
+// A wall 2 m in front of the sensor (the origin), its tag facing it.
+mrpt::maps::CPointsMapXYZI wallInFrontOfTheSensor(TagDetection& truth)
+{
+	tagmap::testing::WallScene s;
+	s.spacing = 0.008;
+	s.wall = 1.0;
+	// Wall z (its front) towards the sensor, wall x to the sensor's right
+	// (-y), wall y up.
+	s.T_G_wall.linear().col(0) = -Eigen::Vector3d::UnitY();
+	s.T_G_wall.linear().col(1) = Eigen::Vector3d::UnitZ();
+	s.T_G_wall.linear().col(2) = -Eigen::Vector3d::UnitX();
+	s.T_G_wall.translation() = Eigen::Vector3d(2, 0.1, 0.2);
+	return tagmap::testing::makeWall(s, truth);
+}
+
+TEST(SensorView, EachPointsPixelLooksBackAlongItsRay)
+{
+	TagDetection truth;
+	const mrpt::maps::CPointsMapXYZI m = wallInFrontOfTheSensor(truth);
+	const SensorView v = renderSensorView(m.getPointsBufferRef_x().data(), m.getPointsBufferRef_y().data(),
+										  m.getPointsBufferRef_z().data(), m.getPointsBufferRef_intensity().data(),
+										  m.size(), {});
+	ASSERT_FALSE(v.gray.empty());
+	for (size_t i = 0; i < m.size(); i += 97)
+	{
+		const Eigen::Vector3d p(m.getPointsBufferRef_x()[i], m.getPointsBufferRef_y()[i], m.getPointsBufferRef_z()[i]);
+		const Eigen::Vector2d xy = v.pixelOf[i].cast<double>();
+		ASSERT_GE(xy.x(), 0);
+		ASSERT_LT(xy.x(), v.gray.cols);
+		ASSERT_LT(xy.y(), v.gray.rows);
+		EXPECT_GT(v.ray(xy).dot(p.normalized()), std::cos(1e-5));
+	}
+	// The wall's 8 mm spacing at 2 m is 0.23 deg.
+	EXPECT_NEAR(v.angularSpacing * 180 / M_PI, 0.23, 0.03);
+}
+
+TEST(SensorView, ReadsTheTagUnmirroredAndBoxesItsCorners)
+{
+	// As the sensor sees it, never from behind: an unmirrored decoder reads
+	// it, and the box of the read lies on the tag.
+	TagDetection truth;
+	const mrpt::maps::CPointsMapXYZI m = wallInFrontOfTheSensor(truth);
+	const float *xs = m.getPointsBufferRef_x().data(), *ys = m.getPointsBufferRef_y().data(),
+				*zs = m.getPointsBufferRef_z().data();
+	const SensorView v = renderSensorView(xs, ys, zs, m.getPointsBufferRef_intensity().data(), m.size(), {});
+	TagDecoderParams unmirrored;
+	unmirrored.tryMirrored = false;
+	const std::vector<DecodedTag2D> reads = TagDecoder({"tag36h11"}, unmirrored).decode(v.gray);
+	ASSERT_EQ(reads.size(), 1u);
+	EXPECT_EQ(reads[0].id, truth.id);
+	OrientedBox box;
+	ASSERT_TRUE(boxOfRead(v, reads[0], xs, ys, zs, m.size(), 0.02, box));
+	EXPECT_LT((box.center - truth.position()).norm(), 0.01);
+	EXPECT_GT(std::abs(box.axes.col(2).dot(truth.pose.linear().col(2))), std::cos(2 * M_PI / 180));
+	EXPECT_NEAR(box.extent.x(), truth.size + 2 * 0.02, 0.02);
+	EXPECT_NEAR(box.extent.y(), truth.size + 2 * 0.02, 0.02);
 }

@@ -49,6 +49,37 @@ cv::Mat blurredAtScale(const cv::Mat& img, double s)
 }
 }  // namespace
 
+void fillHoles(const cv::Mat& wsum, const cv::Mat& isum, double firstSigma, double maxSigma, cv::Mat& img,
+			   cv::Mat& known)
+{
+	for (double s = firstSigma; cv::countNonZero(known) < known.rows * known.cols && s < maxSigma; s *= 2)
+	{
+		const cv::Mat bw = blurredAtScale(wsum, s), bi = blurredAtScale(isum, s);
+		cv::Mat filled;
+		cv::divide(bi, bw + 1e-9f, filled);
+		cv::Mat holes = ~known & (bw > 1e-4f);
+		filled.copyTo(img, holes);
+		known |= holes;
+	}
+}
+
+cv::Mat contrastNormalised(const cv::Mat& img, std::vector<float> intensities, const cv::Mat& known)
+{
+	// The points' own intensities set the contrast: the image does not
+	// depend on the sensor's intensity scale.
+	const auto at = [&](size_t k) {
+		std::nth_element(intensities.begin(), intensities.begin() + static_cast<std::ptrdiff_t>(k), intensities.end());
+		return static_cast<double>(intensities[k]);
+	};
+	const size_t n = intensities.size();
+	const double lo8 = at(n * 2 / 100), hi8 = at(n * 98 / 100), mid = at(n / 2);
+	const double scale = hi8 > lo8 ? 255.0 / (hi8 - lo8) : 1.0;
+	cv::Mat gray;
+	img.convertTo(gray, CV_8U, scale, -lo8 * scale);
+	gray.setTo(cv::Scalar(static_cast<int>(std::clamp((mid - lo8) * scale, 0.0, 255.0))), ~known);
+	return gray;
+}
+
 PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float* zs, const float* is,
 								   const std::vector<uint32_t>& points, const OrientedBox& box, double spacing,
 								   const IntermediatePlaneParams& p, double smallestCell)
@@ -132,23 +163,9 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	cv::Mat img;
 	cv::divide(isum, wsum + 1e-6f, img);
 	cv::Mat known = wsum > 0.05f;
-	for (double s = 2 * sigmaPx; cv::countNonZero(known) < W * H && s < std::max(W, H); s *= 2)
-	{
-		const cv::Mat bw = blurredAtScale(wsum, s), bi = blurredAtScale(isum, s);
-		cv::Mat filled;
-		cv::divide(bi, bw + 1e-9f, filled);
-		cv::Mat holes = ~known & (bw > 1e-4f);
-		filled.copyTo(img, holes);
-		known |= holes;
-	}
+	fillHoles(wsum, isum, 2 * sigmaPx, std::max(W, H), img, known);
 
-	// Contrast normalisation from the points' own intensities: the image
-	// does not depend on the sensor's intensity scale.
-	std::sort(vals.begin(), vals.end());
-	const double lo8 = vals[vals.size() * 2 / 100], hi8 = vals[vals.size() * 98 / 100];
-	const double scale = hi8 > lo8 ? 255.0 / (hi8 - lo8) : 1.0;
-	img.convertTo(out.gray, CV_8U, scale, -lo8 * scale);
-	out.gray.setTo(cv::Scalar(static_cast<int>(std::clamp((vals[vals.size() / 2] - lo8) * scale, 0.0, 255.0))), ~known);
+	out.gray = contrastNormalised(img, std::move(vals), known);
 	return out;
 }
 

@@ -20,6 +20,7 @@
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/point_spacing.h"
 #include "tagmap/read_evidence.h"
+#include "tagmap/sensor_view.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/support_plane.h"
 #include "tagmap/surface_noise.h"
@@ -235,6 +236,49 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 			reports.push_back(rep);
 			candidates.push_back({reports.size() - 1, w});
 		}
+	}
+	return candidates;
+}
+
+// Stages 1-3 for a scan in its sensor frame (sensor_view.h): every read of
+// the sensor's view proposes the box around its corners; reads of one quad
+// (plain and mirrored, hard and soft) propose it once. Each box passes the
+// same size, squareness and flatness criteria as a cluster's.
+std::vector<Candidate> proposeFromSensorView(const MapView& m, const PipelineParams& p, const DerivedLengths& len,
+											 const std::vector<std::string>& families, const TagDecoder& hard,
+											 const SoftTagDecoder& soft, std::vector<CandidateReport>& reports)
+{
+	std::vector<Candidate> candidates;
+	const SensorView view = renderSensorView(m.xs, m.ys, m.zs, m.is, m.n, p.sensorView);
+	if (view.gray.empty()) return candidates;
+	// The smallest tag a scan can show: a point on every cell of the family
+	// with the fewest cells across its border square.
+	int fewestCells = 0;
+	for (const std::string& f : families)
+	{
+		const int cells = renderTagBitmap(f, 0).borderCells;
+		fewestCells = fewestCells > 0 ? std::min(fewestCells, cells) : cells;
+	}
+	const std::vector<Quad> quads =
+		findTagQuads(view.gray, p.sensorView.maxQuads, fewestCells * view.angularSpacing / view.pixel);
+	std::vector<DecodedTag2D> reads = hard.decode(view.gray, &quads);
+	for (DecodedTag2D& d : soft.decode(view.gray, quads)) reads.push_back(std::move(d));
+	const CandidateFilterParams cf = filterParams(p);
+	for (const DecodedTag2D& d : reads)
+	{
+		OrientedBox box;
+		if (!boxOfRead(view, d, m.xs, m.ys, m.zs, m.n, len.candidateBand, box)) continue;
+		const bool seen = std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
+			return (c.box.center - box.center).norm() < 0.25 * std::min(box.extent.x(), box.extent.y());
+		});
+		if (seen) continue;
+		CandidateReport rep;
+		rep.center = box.center;
+		rep.extent = box.extent;
+		const std::optional<Verdict> why = rejectCandidate(box, len.candidateBand, len.planeNoise, cf);
+		rep.verdict = why.value_or(Verdict::Candidate);
+		reports.push_back(rep);
+		if (!why) candidates.push_back({reports.size() - 1, box});
 	}
 	return candidates;
 }
@@ -533,23 +577,37 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	});
 	out.surfaceNoise = stage.run("surface_noise", m.n, [&] { return estimateSurfaceNoise(m.xs, m.ys, m.zs, m.n, grid); });
 	len.setSurfaceNoise(out.surfaceNoise);
-	IntensityGradientResult edges = stage.run("intensity_gradient", m.n, [&](const CountProgressFn& count) {
-		return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, len.gradientRadius, params_.gradient, threads, 0,
-										 count);
-	});
-	std::vector<Cluster> clusters;
-	stage.run("clustering", edges.keptPoints.size(), [&] {
-		return addClusters(m, edges.keptPoints, 1.0, spacing, params_.clustering, clusters);
-	});
-	stage.run("oversized_split", edges.keptByChance.size(), [&] {
-		return splitOversizedClusters(m, edges.keptByChance, spacing, len, params_, clusters);
-	});
-	stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
-		return clusterSparseLevels(m, std::move(edges), len, params_, threads, clusters);
-	});
-	const std::vector<Candidate> candidates = stage.run("candidate_filter", clusters.size(), [&] {
-		return proposeCandidates(m, clusters, filterParams(params_), len, out.candidates);
-	});
+	std::vector<Candidate> candidates;
+	if (params_.sensorView.enabled)
+		candidates = stage.run("sensor_view", m.n, [&] {
+			// The sensor sees a tag's printed face, never its back: the view
+			// is read unmirrored only.
+			TagDecoderParams unmirrored = params_.decoder;
+			unmirrored.tryMirrored = false;
+			unmirrored.quadDecimate = static_cast<float>(params_.sensorView.quadDecimate);
+			const TagDecoder& hard = perWorker(viewDecoders_, decodersMutex_, 0, decodedFamilies_, unmirrored);
+			return proposeFromSensorView(m, params_, len, decodedFamilies_, hard, decodersFor(0).soft, out.candidates);
+		});
+	else
+	{
+		IntensityGradientResult edges = stage.run("intensity_gradient", m.n, [&](const CountProgressFn& count) {
+			return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, len.gradientRadius, params_.gradient, threads, 0,
+											 count);
+		});
+		std::vector<Cluster> clusters;
+		stage.run("clustering", edges.keptPoints.size(), [&] {
+			return addClusters(m, edges.keptPoints, 1.0, spacing, params_.clustering, clusters);
+		});
+		stage.run("oversized_split", edges.keptByChance.size(), [&] {
+			return splitOversizedClusters(m, edges.keptByChance, spacing, len, params_, clusters);
+		});
+		stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
+			return clusterSparseLevels(m, std::move(edges), len, params_, threads, clusters);
+		});
+		candidates = stage.run("candidate_filter", clusters.size(), [&] {
+			return proposeCandidates(m, clusters, filterParams(params_), len, out.candidates);
+		});
+	}
 	const auto gatherer = stage.run("octree", grid.voxelCount(), [&] {
 		return std::make_unique<const OctreeGatherer>(grid, len.octreeLeaf, params_.gather, threads);
 	});

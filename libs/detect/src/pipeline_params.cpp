@@ -106,6 +106,15 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"blocked_fraction", bind(p.frontSide.blockedFraction)},
 		  {"free_fraction", bind(p.frontSide.freeFraction)}}},
 		{"merge", {{"conflict_sigmas", bind(p.merge.conflictSigmas)}}},
+		{"sensor_view",
+		 {{"enabled", bind(p.sensorView.enabled)},
+		  {"pixel_spacings", bind(p.sensorView.pixelSpacings)},
+		  {"splat_spacings", bind(p.sensorView.splatSpacings)},
+		  {"fill_spacings", bind(p.sensorView.fillSpacings)},
+		  {"seam_overlap_deg", bind(p.sensorView.seamOverlapDeg)},
+		  {"max_image_pixels", bind(p.sensorView.maxImagePixels)},
+		  {"quad_decimate", bind(p.sensorView.quadDecimate)},
+		  {"max_quads", bind(p.sensorView.maxQuads)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -261,6 +270,16 @@ void PipelineParams::validate() const
 		throw std::invalid_argument("support_plane.reach_sizes must be in [0.5, 2.5]");
 	positive(supportPlane.stepSigmas, "support_plane.step_sigmas");
 	positive(frontSide.depthSizes, "front_side.depth_sizes");
+	positive(sensorView.pixelSpacings, "sensor_view.pixel_spacings");
+	positive(sensorView.splatSpacings, "sensor_view.splat_spacings");
+	positive(sensorView.fillSpacings, "sensor_view.fill_spacings");
+	if (!(sensorView.quadDecimate >= 1 && sensorView.quadDecimate <= 8))
+		throw std::invalid_argument("sensor_view.quad_decimate must be in [1, 8]");
+	if (!(sensorView.seamOverlapDeg >= 0 && sensorView.seamOverlapDeg <= 90))
+		throw std::invalid_argument("sensor_view.seam_overlap_deg must be in [0, 90]");
+	if (sensorView.maxImagePixels < 64 || sensorView.maxImagePixels > 16384)
+		throw std::invalid_argument("sensor_view.max_image_pixels must be in [64, 16384]");
+	if (sensorView.maxQuads < 1 || sensorView.maxQuads > 1000) throw std::invalid_argument("sensor_view.max_quads must be 1..1000");
 	if (!(merge.conflictSigmas >= 0)) throw std::invalid_argument("merge.conflict_sigmas must be at least 0");
 	if (frontSide.columns < 1 || frontSide.columns > 64) throw std::invalid_argument("front_side.columns must be in [1, 64]");
 	if (!(frontSide.freeFraction >= 0 && frontSide.freeFraction < frontSide.blockedFraction &&

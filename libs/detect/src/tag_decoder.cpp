@@ -201,7 +201,7 @@ TagDecoder::TagDecoder(const std::vector<std::string>& families, TagDecoderParam
 			if (!impl_->detector)
 			{
 				impl_->detector = apriltag_detector_create();
-				impl_->detector->quad_decimate = 1.0f;  // our images are small and already at the right scale
+				impl_->detector->quad_decimate = params.quadDecimate;
 				impl_->detector->quad_sigma = 0.0f;
 				impl_->detector->nthreads = 1;  // the pipeline parallelises across candidates
 				impl_->detector->refine_edges = 1;

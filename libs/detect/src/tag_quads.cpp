@@ -92,7 +92,7 @@ std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& smooth, const cv::Rotate
  *  OpenCV's ArUco works on thin adaptive thresholds and misses a blurred
  *  tag's border; Otsu keeps the wide black border ring as one blob whose
  *  outline is the border square. */
-void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point2f>>& quads)
+void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point2f>>& quads, double minArea)
 {
 	// Two smoothings: a light one keeps small tags' corners, a heavier one
 	// (about two point spacings: a pixel is 0.6 of one) joins a noisy or
@@ -109,7 +109,6 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 		cv::findContours(dark, found, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);
 		contours.insert(contours.end(), found.begin(), found.end());
 	}
-	const double minArea = 0.002 * static_cast<double>(gray8.total());
 	// Both smoothings outline most blobs alike: a seed within half a pixel
 	// of one already fitted would climb to the same square again.
 	std::vector<cv::RotatedRect> fitted;
@@ -172,18 +171,22 @@ std::vector<std::vector<cv::Point2f>> withoutDuplicates(const std::vector<std::v
 }
 }  // namespace
 
-std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads)
+std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide)
 {
+	// Without a smallest side: a candidate image is mostly tag, and outlines
+	// under 0.2 % of it (perimeters under 5 % of its edge) are specks.
+	const double longEdge = std::max(gray8.cols, gray8.rows);
+	const double minArea = minSide > 0 ? minSide * minSide : 0.002 * static_cast<double>(gray8.total());
 	// The dictionary only decides which candidates OpenCV calls accepted;
 	// both lists are quads to us, the identification happens later.
 	std::vector<std::vector<cv::Point2f>> accepted, quads;
 	std::vector<int> ids;
 	auto detParams = cv::aruco::DetectorParameters::create();
-	detParams->minMarkerPerimeterRate = 0.05;  // a candidate image is mostly tag
+	detParams->minMarkerPerimeterRate = minSide > 0 ? std::min(0.05, 4 * minSide / longEdge) : 0.05;
 	cv::aruco::detectMarkers(gray8, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), accepted, ids, detParams,
 							 quads);
 	quads.insert(quads.begin(), accepted.begin(), accepted.end());  // sub-pixel refined: preferred
-	addDarkBlobOutlines(gray8, quads);
+	addDarkBlobOutlines(gray8, quads, minArea);
 	quads = withoutDuplicates(quads);
 	std::stable_sort(quads.begin(), quads.end(),
 					 [](const auto& a, const auto& b) { return cv::contourArea(a) > cv::contourArea(b); });

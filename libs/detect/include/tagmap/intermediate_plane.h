@@ -58,6 +58,18 @@ struct PlaneImage
 	double localSpacing = 0;  // point spacing on the plane, metres
 };
 
+/** Holes of a normalised convolution (`img` = isum / wsum where `known`):
+ *  filled from ever blurrier versions of it, sigma `firstSigma` pixels,
+ *  doubling while below `maxSigma` and pixels are unknown. Shared by the
+ *  intermediate plane and the sensor view. */
+void fillHoles(const cv::Mat& wsum, const cv::Mat& isum, double firstSigma, double maxSigma, cv::Mat& img,
+			   cv::Mat& known);
+
+/** `img` (float) as 8 bits: the 2nd..98th percentile of the rendered
+ *  points' `intensities` stretched over 0..255, pixels not `known` at
+ *  their median. Shared by the intermediate plane and the sensor view. */
+cv::Mat contrastNormalised(const cv::Mat& img, std::vector<float> intensities, const cv::Mat& known);
+
 /** Fits the plane, projects and renders. Returns an empty image when the
  *  points do not make a plane. `box` seeds the plane and the in-plane axes;
  *  `smallestCell` (metres, 0 = unknown) is the smallest tag cell the image

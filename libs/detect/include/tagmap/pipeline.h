@@ -85,6 +85,7 @@ class Pipeline
 	mutable std::vector<std::unique_ptr<TagDecoder>> decoders_;
 	mutable std::mutex decodersMutex_;
 	mutable std::vector<std::unique_ptr<SoftTagDecoder>> softDecoders_;
+	mutable std::vector<std::unique_ptr<TagDecoder>> viewDecoders_;  // one, unmirrored (sensor_view.h)
 	struct WorkerDecoders
 	{
 		const TagDecoder& hard;

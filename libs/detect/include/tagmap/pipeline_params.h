@@ -16,6 +16,7 @@
 #include "tagmap/octree_gather.h"
 #include "tagmap/pattern_refinement.h"
 #include "tagmap/read_evidence.h"
+#include "tagmap/sensor_view.h"
 #include "tagmap/point_spacing.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/front_side.h"
@@ -54,6 +55,9 @@ struct PipelineParams
 	SupportPlaneParams supportPlane;
 	FrontSideParams frontSide;
 	MergeParams merge;
+	/** Single scans in their sensor frame: candidates from the sensor's
+	 *  own view instead of stages 1-3 (sensor_view.h). */
+	SensorViewParams sensorView;
 
 	/** Reads the keys present in `y` over the defaults; throws
 	 *  std::invalid_argument naming an unknown key or an invalid value. */

@@ -50,6 +50,9 @@ struct TagDecoderParams
 	/** Border cells an ArUco decode may find white, as a fraction (OpenCV's
 	 *  maxErroneousBitsInBorderRate). */
 	double maxBorderErrorRate = 0.2;
+	/** libapriltag's quad_decimate: quads are searched on an image this
+	 *  many times smaller, then fitted at full resolution. */
+	float quadDecimate = 1.0f;
 };
 
 /** Removes reads of the same tag (family, id, side) from nearly the same

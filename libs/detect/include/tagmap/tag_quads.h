@@ -20,8 +20,11 @@ using Quad = std::array<Eigen::Vector2d, 4>;
 /** Square-ish outlines: every candidate OpenCV's ArUco contour finder
  *  considers (thin adaptive thresholds), plus the outlines of dark blobs
  *  under a global Otsu threshold, which keep a blurred tag's black border
- *  ring whole. Largest first, at most `maxQuads`. */
-std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads);
+ *  ring whole. Largest first, at most `maxQuads`. `minSide` (pixels): the
+ *  smallest outline kept; 0 for a candidate image, which is mostly tag
+ *  (outlines under 0.2 % of its area are specks). A whole scan's view
+ *  holds tags far smaller than itself and gives its own. */
+std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide = 0);
 
 /** `quads` in an image resized by `factor` (pixel edges scale exactly). */
 std::vector<Quad> scaledQuads(const std::vector<Quad>& quads, double factor);
