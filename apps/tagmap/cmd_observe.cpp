@@ -31,8 +31,8 @@ const char* kUsage =
 	"                   rawlog's odometry (default 1: every scan alone). For short frames too\n"
 	"                   sparse to decode a tag (a 0.1 s Livox frame): e.g. 3-5 (docs/LOCALIZATION.md)\n"
 	"  --sensor-view    candidates from each scan's own spherical view, read by the decoders\n"
-	"                   (faster on sparse scans; docs/LOCALIZATION.md for when it sees more\n"
-	"                   or fewer tags than the default map path)\n"
+	"                   (faster on sparse scans; one viewpoint, so not for a long --window over\n"
+	"                   fast motion; docs/LOCALIZATION.md for when it sees more or fewer tags)\n"
 	"  --quiet          print nothing but errors (default: progress on stderr and a summary line)\n";
 
 }  // namespace
