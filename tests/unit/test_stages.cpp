@@ -714,6 +714,8 @@ TEST(SensorView, ReadsTheTagUnmirroredAndBoxesItsCorners)
 	ASSERT_TRUE(boxOfRead(v, reads[0], xs, ys, zs, m.size(), 0.02, box));
 	EXPECT_LT((box.center - truth.position()).norm(), 0.01);
 	EXPECT_GT(std::abs(box.axes.col(2).dot(truth.pose.linear().col(2))), std::cos(2 * M_PI / 180));
-	EXPECT_NEAR(box.extent.x(), truth.size + 2 * 0.02, 0.02);
-	EXPECT_NEAR(box.extent.y(), truth.size + 2 * 0.02, 0.02);
+	// The printed tag: tag36h11's 8-cell border square and a cell of quiet
+	// zone each side, then the band.
+	EXPECT_NEAR(box.extent.x(), truth.size * 10 / 8 + 2 * 0.02, 0.02);
+	EXPECT_NEAR(box.extent.y(), truth.size * 10 / 8 + 2 * 0.02, 0.02);
 }

@@ -7,6 +7,7 @@
 
 #include "tagmap/intermediate_plane.h"
 #include "tagmap/point_stats.h"
+#include "tagmap/tag_family.h"
 
 namespace tagmap
 {
@@ -243,7 +244,12 @@ bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs
 	box.axes.col(2) = u.cross(box.axes.col(1));
 	box.center = (corners[0] + corners[1] + corners[2] + corners[3]) / 4;
 	box.thickness = 4 * rms;
-	box.extent = Eigen::Vector3d(0.5 * across.norm() + 2 * band, 0.5 * std::abs(down.dot(box.axes.col(1))) + 2 * band,
+	// The read's quad is the border square; the printed tag reaches a cell
+	// further (the quiet zone), as far as the edge points of a map path
+	// cluster do.
+	const int cells = renderTagBitmap(read.family, 0).borderCells;
+	const double grow = cells > 0 ? (cells + 2.0) / cells : 1.0;
+	box.extent = Eigen::Vector3d(grow * 0.5 * across.norm() + 2 * band, grow * 0.5 * std::abs(down.dot(box.axes.col(1))) + 2 * band,
 								 box.thickness);
 	return true;
 }

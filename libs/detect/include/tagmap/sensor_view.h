@@ -73,8 +73,9 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 
 /** The box a read of the view proposes, in the form the map path's stage 3
  *  gives (clustering.h): centred on the tag's 3D corners (their rays cut
- *  the plane of the points inside the quad), length and width the tag's
- *  sides plus `band` on each side, height (and thickness) 4x the RMS of
+ *  the plane of the points inside the quad), length and width the printed
+ *  tag's (the border square and its one-cell quiet zone) plus `band` on
+ *  each side, height (and thickness) 4x the RMS of
  *  those points about the plane. False when fewer than 8 points fall
  *  inside the quad or a corner's ray misses that plane. */
 bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs, const float* ys, const float* zs,
