@@ -64,4 +64,15 @@ inline mrpt::maps::CPointsMapXYZI makeWall(const WallScene& s, TagDetection& tru
 	return map;
 }
 
+/** `s`'s wall 2 m in front of the origin (a sensor there), its printed face
+ *  towards it: wall x to the sensor's right (-y), wall y up. */
+inline mrpt::maps::CPointsMapXYZI makeWallInFrontOfTheOrigin(WallScene s, TagDetection& truth)
+{
+	s.T_G_wall.linear().col(0) = -Eigen::Vector3d::UnitY();
+	s.T_G_wall.linear().col(1) = Eigen::Vector3d::UnitZ();
+	s.T_G_wall.linear().col(2) = -Eigen::Vector3d::UnitX();
+	s.T_G_wall.translation() = Eigen::Vector3d(2, 0.1, 0.2);
+	return makeWall(s, truth);
+}
+
 }  // namespace tagmap::testing

@@ -208,3 +208,43 @@ TEST(Pipeline, AFarSparseTagIsNotReadAsAnotherId)
 		}
 	}
 }
+
+mrpt::maps::CPointsMapXYZI wallSeenFromTheOrigin(double tagSize, TagDetection& truth)
+{
+	WallScene s;
+	s.size = tagSize;
+	s.spacing = 0.008;
+	s.wall = 1.0;
+	return tagmap::testing::makeWallInFrontOfTheOrigin(s, truth);
+}
+
+std::vector<std::string> stageNames(const Detections& d)
+{
+	std::vector<std::string> names;
+	for (const StageReport& r : d.stages) names.push_back(r.name);
+	return names;
+}
+
+TEST(Pipeline, ASensorViewReadsTheTagAndAPlainOneStopsThere)
+{
+	PipelineParams p;
+	p.families = {"tag36h11"};
+	p.threads = 1;
+	p.sensorView.enabled = true;
+	const Pipeline pipeline(p);
+	TagDetection truth;
+	const Detections found = pipeline.detect(wallSeenFromTheOrigin(0.2, truth));
+	ASSERT_EQ(found.tags.size(), 1u);
+	EXPECT_EQ(found.tags[0].id, truth.id);
+	EXPECT_LT((found.tags[0].position() - truth.position()).norm(), 0.005);
+	const std::vector<std::string> all = stageNames(found);
+	EXPECT_EQ(all.front(), "sensor_view");
+	EXPECT_NE(std::find(all.begin(), all.end(), "decode"), all.end());
+	EXPECT_EQ(std::find(all.begin(), all.end(), "intensity_gradient"), all.end());
+
+	// Nothing read in the view: the scan's spacing and noise are not even
+	// measured.
+	const Detections plain = pipeline.detect(wallSeenFromTheOrigin(0.0001, truth));
+	EXPECT_TRUE(plain.tags.empty());
+	EXPECT_EQ(stageNames(plain), std::vector<std::string>{"sensor_view"});
+}

@@ -666,13 +666,7 @@ mrpt::maps::CPointsMapXYZI wallInFrontOfTheSensor(TagDetection& truth)
 	tagmap::testing::WallScene s;
 	s.spacing = 0.008;
 	s.wall = 1.0;
-	// Wall z (its front) towards the sensor, wall x to the sensor's right
-	// (-y), wall y up.
-	s.T_G_wall.linear().col(0) = -Eigen::Vector3d::UnitY();
-	s.T_G_wall.linear().col(1) = Eigen::Vector3d::UnitZ();
-	s.T_G_wall.linear().col(2) = -Eigen::Vector3d::UnitX();
-	s.T_G_wall.translation() = Eigen::Vector3d(2, 0.1, 0.2);
-	return tagmap::testing::makeWall(s, truth);
+	return tagmap::testing::makeWallInFrontOfTheOrigin(s, truth);
 }
 
 TEST(SensorView, EachPointsPixelLooksBackAlongItsRay)

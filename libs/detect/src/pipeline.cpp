@@ -49,6 +49,13 @@ size_t itemsOut(size_t count) { return count; }
 size_t itemsOut(const VoxelGrid& grid) { return grid.voxelCount(); }
 size_t itemsOut(const IntensityGradientResult& r) { return r.keptPoints.size(); }
 size_t itemsOut(const std::unique_ptr<const OctreeGatherer>& g) { return g->occupiedLeaves(); }
+// A scan's view and what the decoders read in it (sensor_view.h).
+struct SensorViewReads
+{
+	SensorView view;
+	std::vector<DecodedTag2D> reads;
+};
+size_t itemsOut(const SensorViewReads& r) { return r.reads.size(); }
 template <typename T>
 size_t itemsOut(const std::vector<T>& v)
 {
@@ -240,17 +247,14 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 	return candidates;
 }
 
-// Stages 1-3 for a scan in its sensor frame (sensor_view.h): every read of
-// the sensor's view proposes the box around its corners; reads of one quad
-// (plain and mirrored, hard and soft) propose it once. Each box passes the
-// same size, squareness and flatness criteria as a cluster's.
-std::vector<Candidate> proposeFromSensorView(const MapView& m, const PipelineParams& p, const DerivedLengths& len,
-											 const std::vector<std::string>& families, const TagDecoder& hard,
-											 const SoftTagDecoder& soft, std::vector<CandidateReport>& reports)
+// Stages 1-3 for a scan in its sensor frame (sensor_view.h), first half:
+// the scan as its sensor sees it and every read of it, by libapriltag and
+// by the soft decoder. Needs none of the scan's measured lengths.
+SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const std::vector<std::string>& families,
+							   const TagDecoder& hard, const SoftTagDecoder& soft)
 {
-	std::vector<Candidate> candidates;
-	const SensorView view = renderSensorView(m.xs, m.ys, m.zs, m.is, m.n, p.sensorView);
-	if (view.gray.empty()) return candidates;
+	SensorViewReads out{renderSensorView(m.xs, m.ys, m.zs, m.is, m.n, p.sensorView), {}};
+	if (out.view.gray.empty()) return out;
 	// The smallest tag a scan can show: a point on every cell of the family
 	// with the fewest cells across its border square.
 	int fewestCells = 0;
@@ -260,18 +264,28 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const PipelinePar
 		fewestCells = fewestCells > 0 ? std::min(fewestCells, cells) : cells;
 	}
 	const std::vector<Quad> quads =
-		findTagQuads(view.gray, p.sensorView.maxQuads, fewestCells * view.angularSpacing / view.pixel);
-	std::vector<DecodedTag2D> reads = hard.decode(view.gray, &quads);
-	for (DecodedTag2D& d : soft.decode(view.gray, quads)) reads.push_back(std::move(d));
+		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
+	out.reads = hard.decode(out.view.gray, &quads);
+	for (DecodedTag2D& d : soft.decode(out.view.gray, quads)) out.reads.push_back(std::move(d));
+	return out;
+}
+
+// Second half: the box around each read's corners; reads of one quad
+// (plain and mirrored, hard and soft) propose it once. Each box passes the
+// same size, squareness and flatness criteria as a cluster's.
+std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewReads& seen, const PipelineParams& p,
+											 const DerivedLengths& len, std::vector<CandidateReport>& reports)
+{
+	std::vector<Candidate> candidates;
 	const CandidateFilterParams cf = filterParams(p);
-	for (const DecodedTag2D& d : reads)
+	for (const DecodedTag2D& d : seen.reads)
 	{
 		OrientedBox box;
-		if (!boxOfRead(view, d, m.xs, m.ys, m.zs, m.n, len.candidateBand, box)) continue;
-		const bool seen = std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
+		if (!boxOfRead(seen.view, d, m.xs, m.ys, m.zs, m.n, len.candidateBand, box)) continue;
+		const bool again = std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
 			return (c.box.center - box.center).norm() < 0.25 * std::min(box.extent.x(), box.extent.y());
 		});
-		if (seen) continue;
+		if (again) continue;
 		CandidateReport rep;
 		rep.center = box.center;
 		rep.extent = box.extent;
@@ -566,6 +580,26 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	const unsigned threads = resolveThreads(params_.threads);
 	StageRunner stage(out.stages, progress);
 
+	// A scan read from its own sensor first: where the view holds no read,
+	// there is nothing to measure the scan's lengths for.
+	std::optional<SensorViewReads> viewReads;
+	if (params_.sensorView.enabled)
+	{
+		viewReads = stage.run("sensor_view", m.n, [&] {
+			// The sensor sees a tag's printed face, never its back: the view
+			// is read unmirrored only.
+			TagDecoderParams unmirrored = params_.decoder;
+			unmirrored.tryMirrored = false;
+			unmirrored.quadDecimate = static_cast<float>(params_.sensorView.quadDecimate);
+			const TagDecoder& hard = perWorker(viewDecoders_, decodersMutex_, 0, decodedFamilies_, unmirrored);
+			return readSensorView(m, params_, decodedFamilies_, hard, decodersFor(0).soft);
+		});
+		if (viewReads->reads.empty())
+		{
+			out.totalSeconds = std::chrono::duration<double>(Clock::now() - tStart).count();
+			return out;
+		}
+	}
 	const double spacing = stage.run("point_spacing", m.n, [&] {
 		return estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing, threads);
 	});
@@ -578,15 +612,9 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	out.surfaceNoise = stage.run("surface_noise", m.n, [&] { return estimateSurfaceNoise(m.xs, m.ys, m.zs, m.n, grid); });
 	len.setSurfaceNoise(out.surfaceNoise);
 	std::vector<Candidate> candidates;
-	if (params_.sensorView.enabled)
-		candidates = stage.run("sensor_view", m.n, [&] {
-			// The sensor sees a tag's printed face, never its back: the view
-			// is read unmirrored only.
-			TagDecoderParams unmirrored = params_.decoder;
-			unmirrored.tryMirrored = false;
-			unmirrored.quadDecimate = static_cast<float>(params_.sensorView.quadDecimate);
-			const TagDecoder& hard = perWorker(viewDecoders_, decodersMutex_, 0, decodedFamilies_, unmirrored);
-			return proposeFromSensorView(m, params_, len, decodedFamilies_, hard, decodersFor(0).soft, out.candidates);
+	if (viewReads)
+		candidates = stage.run("view_candidates", viewReads->reads.size(), [&] {
+			return proposeFromSensorView(m, *viewReads, params_, len, out.candidates);
 		});
 	else
 	{
