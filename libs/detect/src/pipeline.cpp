@@ -546,6 +546,32 @@ std::vector<TagDetection> decodeCandidates(const CandidateDecoder& decoder, cons
 	return all;
 }
 
+// Stages 1-3 of the paper on a map: points of high intensity gradient,
+// their clusters (at several tolerances and density levels, oversized ones
+// split), the boxes that may hold a tag.
+std::vector<Candidate> proposeFromGradient(StageRunner& stage, const MapView& m, const VoxelGrid& grid,
+										   const DerivedLengths& len, const PipelineParams& p, unsigned threads,
+										   std::vector<CandidateReport>& reports)
+{
+	IntensityGradientResult edges = stage.run("intensity_gradient", m.n, [&](const CountProgressFn& count) {
+		return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, len.gradientRadius, p.gradient, threads, 0,
+										 count);
+	});
+	std::vector<Cluster> clusters;
+	stage.run("clustering", edges.keptPoints.size(), [&] {
+		return addClusters(m, edges.keptPoints, 1.0, len.spacing, p.clustering, clusters);
+	});
+	stage.run("oversized_split", edges.keptByChance.size(), [&] {
+		return splitOversizedClusters(m, edges.keptByChance, len.spacing, len, p, clusters);
+	});
+	stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
+		return clusterSparseLevels(m, std::move(edges), len, p, threads, clusters);
+	});
+	return stage.run("candidate_filter", clusters.size(), [&] {
+		return proposeCandidates(m, clusters, filterParams(p), len, reports);
+	});
+}
+
 // The worker's own decoder, built on first use with the families asked for.
 template <typename Decoder, typename Params>
 Decoder& perWorker(std::vector<std::unique_ptr<Decoder>>& pool, std::mutex& mutex, unsigned worker,
@@ -571,6 +597,16 @@ Pipeline::WorkerDecoders Pipeline::decodersFor(unsigned worker) const
 			perWorker(softDecoders_, decodersMutex_, worker, decodedFamilies_, params_.softDecoder)};
 }
 
+const TagDecoder& Pipeline::viewDecoder() const
+{
+	// The sensor sees a tag's printed face, never its back: the view is read
+	// unmirrored only, its quads searched at its own decimation.
+	TagDecoderParams unmirrored = params_.decoder;
+	unmirrored.tryMirrored = false;
+	unmirrored.quadDecimate = static_cast<float>(params_.sensorView.quadDecimate);
+	return perWorker(viewDecoders_, decodersMutex_, 0, decodedFamilies_, unmirrored);
+}
+
 Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress, bool keepImages) const
 {
 	const auto tStart = Clock::now();
@@ -586,13 +622,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	if (params_.sensorView.enabled)
 	{
 		viewReads = stage.run("sensor_view", m.n, [&] {
-			// The sensor sees a tag's printed face, never its back: the view
-			// is read unmirrored only.
-			TagDecoderParams unmirrored = params_.decoder;
-			unmirrored.tryMirrored = false;
-			unmirrored.quadDecimate = static_cast<float>(params_.sensorView.quadDecimate);
-			const TagDecoder& hard = perWorker(viewDecoders_, decodersMutex_, 0, decodedFamilies_, unmirrored);
-			return readSensorView(m, params_, decodedFamilies_, hard, decodersFor(0).soft);
+			return readSensorView(m, params_, decodedFamilies_, viewDecoder(), decodersFor(0).soft);
 		});
 		if (viewReads->reads.empty())
 		{
@@ -617,25 +647,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 			return proposeFromSensorView(m, *viewReads, params_, len, out.candidates);
 		});
 	else
-	{
-		IntensityGradientResult edges = stage.run("intensity_gradient", m.n, [&](const CountProgressFn& count) {
-			return filterByIntensityGradient(m.xs, m.ys, m.zs, m.is, grid, len.gradientRadius, params_.gradient, threads, 0,
-											 count);
-		});
-		std::vector<Cluster> clusters;
-		stage.run("clustering", edges.keptPoints.size(), [&] {
-			return addClusters(m, edges.keptPoints, 1.0, spacing, params_.clustering, clusters);
-		});
-		stage.run("oversized_split", edges.keptByChance.size(), [&] {
-			return splitOversizedClusters(m, edges.keptByChance, spacing, len, params_, clusters);
-		});
-		stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
-			return clusterSparseLevels(m, std::move(edges), len, params_, threads, clusters);
-		});
-		candidates = stage.run("candidate_filter", clusters.size(), [&] {
-			return proposeCandidates(m, clusters, filterParams(params_), len, out.candidates);
-		});
-	}
+		candidates = proposeFromGradient(stage, m, grid, len, params_, threads, out.candidates);
 	const auto gatherer = stage.run("octree", grid.voxelCount(), [&] {
 		return std::make_unique<const OctreeGatherer>(grid, len.octreeLeaf, params_.gather, threads);
 	});

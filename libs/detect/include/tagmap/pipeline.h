@@ -92,6 +92,7 @@ class Pipeline
 		const SoftTagDecoder& soft;
 	};
 	WorkerDecoders decodersFor(unsigned worker) const;
+	const TagDecoder& viewDecoder() const;  // reads a scan's sensor view (sensor_view.h)
 };
 
 }  // namespace tagmap
