@@ -1,6 +1,5 @@
 #include "tagmap/intermediate_plane.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -11,23 +10,6 @@ namespace tagmap
 {
 namespace
 {
-struct PlaneFit
-{
-	Eigen::Vector3d centroid, normal;
-	double rms = 0;
-};
-
-PlaneFit fitPlane(const float* xs, const float* ys, const float* zs, const std::vector<uint32_t>& pts)
-{
-	PlaneFit f;
-	const PointStats st = pointStats(xs, ys, zs, pts);
-	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(st.scatter);
-	f.centroid = st.mean;
-	f.normal = es.eigenvectors().col(0);
-	f.rms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / static_cast<double>(pts.size()));
-	return f;
-}
-
 /** A Gaussian blur of sigma `s` pixels. Wide blurs run on a copy shrunk so
  *  that sigma is ~2 pixels there, then are enlarged back: a hole-filling
  *  blur of sigma 64 would otherwise cost a 385-tap filter per pixel (it was

@@ -1,6 +1,5 @@
 #include "tagmap/sensor_view.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
@@ -96,31 +95,28 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 {
 	SensorView view;
 	view.pixelOf.assign(n, Eigen::Vector2f(-1, -1));
-	std::vector<double> az(n), el(n);
+	// Each valid point's (azimuth, elevation); the azimuth is unwrapped
+	// below the seam once the seam is known.
 	std::vector<uint32_t> valid;
+	std::vector<Eigen::Vector2d> ae;
+	std::vector<double> azimuths;
 	for (size_t i = 0; i < n; i++)
 	{
 		const double h = std::hypot(xs[i], ys[i]);
 		if (!(h > 0 || zs[i] != 0) || !std::isfinite(h) || !std::isfinite(zs[i]) || !std::isfinite(is[i])) continue;
-		az[i] = std::atan2(ys[i], xs[i]);
-		el[i] = std::atan2(zs[i], h);
 		valid.push_back(static_cast<uint32_t>(i));
+		ae.emplace_back(std::atan2(ys[i], xs[i]), std::atan2(zs[i], h));
+		azimuths.push_back(ae.back().x());
 	}
 	if (valid.size() < 16) return view;
 	const double overlap = p.seamOverlapDeg * kPi / 180;
-	std::vector<double> validAz;
-	validAz.reserve(valid.size());
-	for (uint32_t i : valid) validAz.push_back(az[i]);
-	const Seam seam = findSeam(validAz, overlap);
-
-	std::vector<Eigen::Vector2d> ae;
-	ae.reserve(valid.size());
+	const Seam seam = findSeam(azimuths, overlap);
 	Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-	for (uint32_t i : valid)
+	for (Eigen::Vector2d& a : ae)
 	{
-		ae.emplace_back(unwrapBelow(az[i], seam.at), el[i]);
-		lo = lo.cwiseMin(ae.back());
-		hi = hi.cwiseMax(ae.back());
+		a.x() = unwrapBelow(a.x(), seam.at);
+		lo = lo.cwiseMin(a);
+		hi = hi.cwiseMax(a);
 	}
 	view.angularSpacing = angularSpacing(ae, lo, hi);
 	const double left = seam.fullCircle ? seam.at + overlap : hi.x();
@@ -208,21 +204,20 @@ bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs
 		}
 	}
 	// A plane through them, refitted without the points beyond 3 RMS.
-	Eigen::Vector3d c = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitZ();
-	double rms = 0;
+	PlaneFit fit;
 	std::vector<uint32_t> in = inside;
 	for (int iter = 0; iter < 3 && in.size() >= 8; iter++)
 	{
-		const PointStats st = pointStats(xs, ys, zs, in);
-		Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(st.scatter);
-		c = st.mean;
-		normal = es.eigenvectors().col(0);
-		rms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / static_cast<double>(in.size()));
+		fit = fitPlane(xs, ys, zs, in);
 		in.clear();
 		for (uint32_t i : inside)
-			if (std::abs((Eigen::Vector3d(xs[i], ys[i], zs[i]) - c).dot(normal)) <= 3 * rms + 1e-9) in.push_back(i);
+			if (std::abs((Eigen::Vector3d(xs[i], ys[i], zs[i]) - fit.centroid).dot(fit.normal)) <= 3 * fit.rms + 1e-9)
+				in.push_back(i);
 	}
 	if (in.size() < 8) return false;
+	const Eigen::Vector3d c = fit.centroid;
+	const double rms = fit.rms;
+	Eigen::Vector3d normal = fit.normal;
 	if (normal.dot(c) > 0) normal = -normal;  // towards the sensor
 	std::array<Eigen::Vector3d, 4> corners;
 	for (int k = 0; k < 4; k++)

@@ -1,8 +1,11 @@
 // Mean and scatter of a subset of map points, shared by the box fit
-// (clustering) and the plane fit (intermediate plane).
+// (clustering) and the plane fits (intermediate plane, sensor view).
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -26,6 +29,26 @@ inline PointStats pointStats(const float* xs, const float* ys, const float* zs, 
 		s.scatter += d * d.transpose();
 	}
 	return s;
+}
+
+/** Least-squares plane through a subset of map points: its centroid, unit
+ *  normal (sign arbitrary) and the points' RMS distance from it. Shared by
+ *  the intermediate plane and the sensor view's boxes. */
+struct PlaneFit
+{
+	Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitZ();
+	double rms = 0;
+};
+
+inline PlaneFit fitPlane(const float* xs, const float* ys, const float* zs, const std::vector<uint32_t>& pts)
+{
+	PlaneFit f;
+	const PointStats st = pointStats(xs, ys, zs, pts);
+	Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(st.scatter);
+	f.centroid = st.mean;
+	f.normal = es.eigenvectors().col(0);
+	f.rms = std::sqrt(std::max(0.0, es.eigenvalues()(0)) / static_cast<double>(pts.size()));
+	return f;
 }
 
 }  // namespace tagmap
