@@ -640,6 +640,54 @@ TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)
 	EXPECT_NE(assessRead(tag.img, inner, 8, kEveryFamily, {}).rejection, std::nullopt);
 }
 
+TEST(ReadEvidence, NoCodeIsOneColourThroughout)
+{
+	// quadCanShowACode() rejects an outline whose code cells show one colour
+	// only; that is sure because every code of every family has cells of
+	// both colours where the codes differ. Checked on every code.
+	for (const std::string& family : parseFamilyList(""))
+	{
+		const int ids = findFamily(family)->idCount;
+		std::vector<TagBitmap> codes;
+		for (int id = 0; id < ids; id++) codes.push_back(renderTagBitmap(family, id));
+		std::vector<bool> varies(codes[0].pixels.size(), false);
+		for (const TagBitmap& b : codes)
+			for (size_t k = 0; k < varies.size(); k++) varies[k] = varies[k] || b.pixels[k] != codes[0].pixels[k];
+		for (int id = 0; id < ids; id++)
+		{
+			bool white = false, black = false;
+			for (size_t k = 0; k < varies.size(); k++)
+				if (varies[k]) (codes[static_cast<size_t>(id)].pixels[k] ? white : black) = true;
+			ASSERT_TRUE(white && black) << family << ":" << id;
+		}
+	}
+}
+
+TEST(ReadEvidence, AWindowPaneShowsNoCodeATagDoes)
+{
+	const std::vector<std::string> every = acceptableFamilies(parseFamilyList(""), 8, {});
+	// Each family's tag, drawn clean, shows a code on its own outline.
+	for (const std::string& family : every)
+	{
+		const DrawnRead d = drawTag(family, 3, [](int, int) { return uint8_t(220); });
+		EXPECT_TRUE(quadCanShowACode(d.img, d.read.corners, every, {})) << family;
+	}
+	// The same outline, dark throughout inside a light frame (a window
+	// pane), or light throughout inside its dark ring (a panel): no code.
+	const DrawnRead tag = drawTag("tag36h11", 3, [](int, int) { return uint8_t(220); });
+	const Quad& q = tag.read.corners;
+	cv::Mat pane(tag.img.size(), CV_8U, cv::Scalar(220)), panel = pane.clone();
+	const cv::Rect border(cv::Point2d(q[0].x(), q[0].y()), cv::Point2d(q[2].x(), q[2].y()));
+	pane(border).setTo(25);
+	panel(border).setTo(25);
+	const int ring = border.width / renderTagBitmap("tag36h11", 3).borderCells;
+	panel(cv::Rect(border.x + ring, border.y + ring, border.width - 2 * ring, border.height - 2 * ring)).setTo(220);
+	EXPECT_FALSE(quadCanShowACode(pane, q, every, {}));
+	EXPECT_FALSE(quadCanShowACode(panel, q, every, {}));
+	// An outline whose grid leaves the image cannot be read either.
+	EXPECT_FALSE(quadCanShowACode(tag.img(cv::Rect(0, 0, tag.img.cols / 2, tag.img.rows)), q, every, {}));
+}
+
 TEST(ReadEvidence, WindowGridHasNoQuietZone)
 {
 	// A tag-like square inside a grid of dark bars (windows on a facade):

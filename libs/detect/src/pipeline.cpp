@@ -353,7 +353,8 @@ class CandidateDecoder
 		  readOrientations_(readOrientations(p)),
 		  anyFamilyDecoded_(!decodedFamilies.empty()),
 		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies))),
-		  smallestCell_(smallestReportableCell(p, decodedFamilies))
+		  smallestCell_(smallestReportableCell(p, decodedFamilies)),
+		  decodedFamilies_(decodedFamilies)
 	{
 	}
 
@@ -390,6 +391,14 @@ class CandidateDecoder
 		// so searching the binarised and half-size variants again found the
 		// same squares at twice the cost.
 		const std::vector<Quad> quads = findTagQuads(plane.gray, p_.decoder.maxQuads);
+		// The cheapest sure test on the image: most clutter (window grids)
+		// has outlines only of one colour inside, or too small to be a tag.
+		// libapriltag, the costliest decoder, would search it three times.
+		if (std::none_of(quads.begin(), quads.end(), [&](const Quad& q) { return mayShowATag(q, plane); }))
+		{
+			out.report.verdict = Verdict::NoCodeShown;
+			return out;
+		}
 		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
 		{
 			const std::vector<Quad> variantQuads = scaledQuads(quads, 1.0 / variant.scale);
@@ -467,6 +476,17 @@ class CandidateDecoder
 		return c.toOwn < c.toNearestOther;
 	}
 
+	// An outline a tag of a size asked for could have, with both colours
+	// inside. Outlines on a blurred image lie within a cell of the border
+	// they follow: half the smallest side asked for is far below any read's.
+	bool mayShowATag(const Quad& q, const PlaneImage& plane) const
+	{
+		double side = 0;
+		for (int k = 0; k < 4; k++) side += 0.25 * (q[(k + 1) % 4] - q[k]).norm() * plane.frame.pixel;
+		const double smallest = p_.tagSize > 0 ? p_.tagSize * (1 - kGivenSizeTolerance) : sizes_.minTagSize;
+		return side >= 0.5 * smallest && quadCanShowACode(plane.gray, q, decodedFamilies_, p_.evidence);
+	}
+
 	bool sizeAsked(double measured) const
 	{
 		return p_.tagSize > 0 ? std::abs(measured / p_.tagSize - 1) <= kGivenSizeTolerance
@@ -517,6 +537,7 @@ class CandidateDecoder
 	const bool anyFamilyDecoded_;
 	const size_t fewestPoints_;  // fewestCellsToRead() of the families decoded
 	const double smallestCell_;  // smallestReportableCell(): the finest the images need resolve
+	const std::vector<std::string> decodedFamilies_;  // what the decoders search
 };
 
 // Gather, render, decode, solve: independent per candidate, on each

@@ -19,6 +19,12 @@ struct CellRoles
 {
 	std::vector<uint8_t> role;  // 0 code, 1 fixed black, 2 fixed white
 	int codeBits = 0;
+	int cells = 0, borderStart = 0, borderCells = 0;  // the grid, as TagBitmap's
+
+	bool sameLayout(const CellRoles& o) const
+	{
+		return cells == o.cells && borderStart == o.borderStart && borderCells == o.borderCells && role == o.role;
+	}
 };
 
 const CellRoles& rolesOf(const std::string& family)
@@ -31,6 +37,7 @@ const CellRoles& rolesOf(const std::string& family)
 	slot = std::make_unique<CellRoles>();
 	const TagFamilyInfo* info = findFamily(family);
 	const TagBitmap first = renderTagBitmap(family, 0);
+	slot->cells = first.cells, slot->borderStart = first.borderStart, slot->borderCells = first.borderCells;
 	std::vector<bool> varies(first.pixels.size(), false);
 	// Every code bit changes within the first few hundred ids of any family.
 	for (int id = 1; id < std::min(info->idCount, 256); id++)
@@ -138,6 +145,40 @@ int fewestCellsToRead(const std::vector<std::string>& families)
 		if (fewest == 0 || cells < fewest) fewest = cells;
 	}
 	return fewest;
+}
+
+bool quadCanShowACode(const cv::Mat& gray8, const Quad& q, const std::vector<std::string>& families,
+					  const ReadEvidenceParams& p)
+{
+	std::vector<const CellRoles*> judged;  // families sharing a layout are sampled once
+	for (const std::string& f : families)
+	{
+		const CellRoles& roles = rolesOf(f);
+		if (std::any_of(judged.begin(), judged.end(), [&](const CellRoles* r) { return r->sameLayout(roles); }))
+			continue;
+		judged.push_back(&roles);
+		const std::vector<float> cells =
+			sampleCells(gray8, q, roles.cells, roles.borderStart, roles.borderStart + roles.borderCells);
+		if (cells.empty()) continue;  // the grid leaves the image: assessRead() rejects such a read too
+		double black = 0, white = 0;
+		int nb = 0, nw = 0;
+		for (size_t k = 0; k < cells.size(); k++)
+			if (roles.role[k] == 1) black += cells[k], nb++;
+			else if (roles.role[k] == 2) white += cells[k], nw++;
+		if (nb == 0 || nw == 0) return true;
+		black /= nb, white /= nw;
+		if (white <= black) continue;  // no dark ring in a light margin
+		const double threshold = 0.5 * (black + white), unsure = p.erasureBand * (white - black);
+		bool someWhite = false, someBlack = false;
+		for (size_t k = 0; k < cells.size(); k++)
+			if (roles.role[k] == 0)
+			{
+				someWhite = someWhite || cells[k] > threshold + unsure;
+				someBlack = someBlack || cells[k] < threshold - unsure;
+			}
+		if (someWhite && someBlack) return true;
+	}
+	return false;
 }
 
 double chanceMatchProbability(int codes, int n, int wrong, int orientations)

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "tagmap/tag_decoder.h"
+#include "tagmap/tag_quads.h"
 #include "tagmap/verdict.h"
 
 namespace tagmap
@@ -108,6 +109,18 @@ std::vector<std::string> acceptableFamilies(const std::vector<std::string>& requ
  *  measured, and what decodes there was interpolated, not read. 0 when
  *  `families` is empty. */
 int fewestCellsToRead(const std::vector<std::string>& families);
+
+/** Whether any read of one of `families` on quad `q` could pass, told
+ *  from the quad's cells before a decoder runs. Inside its border ring a
+ *  tag shows code cells of both colours: no code of any family is one
+ *  colour throughout (`ReadEvidence.NoCodeIsOneColourThroughout`), and a
+ *  read needs most code cells clearly right. A window pane (dark inside
+ *  a light frame) or a light panel in a dark frame shows one colour only.
+ *  Colours are judged as a read's are: halfway between the family's fixed
+ *  black ring and white quiet zone, cells within the erasure band of it
+ *  count for neither. */
+bool quadCanShowACode(const cv::Mat& gray8, const Quad& q, const std::vector<std::string>& families,
+					  const ReadEvidenceParams& p);
 
 /** Probability that a uniformly random n-bit pattern lies within `wrong`
  *  bits of one of `codes` codes in one of `orientations` orientations. */

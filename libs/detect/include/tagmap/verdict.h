@@ -20,6 +20,7 @@ enum class Verdict
 	NoDecode,
 	NoFamilyCanPass,
 	TooFewPoints,
+	NoCodeShown,
 	ByChance,
 	NoBorder,
 	NoQuietZone,
@@ -37,7 +38,7 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 16> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 17> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
@@ -50,6 +51,9 @@ inline constexpr std::array<VerdictInfo, 16> kVerdicts = {{
 	{Verdict::TooFewPoints, "too_few_points",
 	 "fewer points gathered than the cells a read of any family searched must measure (its code cells and "
 	 "black border ring): no read of it could be evidence"},
+	{Verdict::NoCodeShown, "no_code_shown",
+	 "no outline of a tag's size in the image shows code cells of both colours inside a dark ring in a light "
+	 "margin (a window pane, a plain panel): no decoder's read there could pass"},
 	{Verdict::ByChance, "by_chance",
 	 "a code was read, but a random pattern would match some code that well too often (evidence.chance_budget)"},
 	{Verdict::NoBorder, "no_border",
