@@ -10,6 +10,31 @@
 
 namespace tagmap
 {
+namespace
+{
+/** `v` sorted ascending, as std::sort would, in three counting passes of
+ *  11 bits: a gather returns tens of thousands of indices in runs (voxel by
+ *  voxel), where a comparison sort was a sixth of the decode stage. */
+void radixSort(std::vector<uint32_t>& v)
+{
+	if (v.size() < 256)
+	{
+		std::sort(v.begin(), v.end());
+		return;
+	}
+	std::vector<uint32_t> tmp(v.size());
+	for (int shift = 0; shift < 32; shift += 11)
+	{
+		size_t count[2049] = {};
+		for (uint32_t x : v) count[((x >> shift) & 2047) + 1]++;
+		if (count[((v[0] >> shift) & 2047) + 1] == v.size()) continue;  // one bucket: nothing to move
+		for (size_t b = 1; b < 2049; b++) count[b] += count[b - 1];
+		for (uint32_t x : v) tmp[count[(x >> shift) & 2047]++] = x;
+		v.swap(tmp);
+	}
+}
+}  // namespace
+
 OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, double leaf, const GatherParams& p, unsigned threads)
 	: grid_(grid), params_(p)
 {
@@ -97,7 +122,7 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 			const Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
 			gatherBetween(c.array() - it.getSize() / 2, c.array() + it.getSize() / 2);
 		}
-	std::sort(out.begin(), out.end());
+	radixSort(out);
 	out.erase(std::unique(out.begin(), out.end()), out.end());
 	return out;
 }
