@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 #include <functional>
+#include <limits>
 #include <random>
 
 #include "synthetic_wall.h"
@@ -686,6 +687,24 @@ TEST(ReadEvidence, AWindowPaneShowsNoCodeATagDoes)
 	EXPECT_FALSE(quadCanShowACode(panel, q, every, {}));
 	// An outline whose grid leaves the image cannot be read either.
 	EXPECT_FALSE(quadCanShowACode(tag.img(cv::Rect(0, 0, tag.img.cols / 2, tag.img.rows)), q, every, {}));
+}
+
+TEST(ReadEvidence, ASmallTagAmongLargerPanesIsOnlyInTheWholeOutlineList)
+{
+	// Why the pipeline judges every outline of an image before skipping
+	// its decoders, not only the largest few the decoders get
+	// (decoder.max_quads): beside twelve larger window panes, a small tag's
+	// outline is the thirteenth. libapriltag would still read it.
+	const std::vector<std::string> every = acceptableFamilies(parseFamilyList(""), 8, {});
+	const DrawnRead tag = drawTag("tag36h11", 3, [](int, int) { return uint8_t(220); });
+	cv::Mat img(470 + tag.img.rows, 620, CV_8U, cv::Scalar(220));
+	for (int k = 0; k < 12; k++) img(cv::Rect(20 + (k % 4) * 150, 20 + (k / 4) * 150, 130, 130)).setTo(25);
+	tag.img.copyTo(img(cv::Rect(0, 470, tag.img.cols, tag.img.rows)));
+	const auto showsCode = [&](const std::vector<Quad>& quads) {
+		return std::any_of(quads.begin(), quads.end(), [&](const Quad& q) { return quadCanShowACode(img, q, every, {}); });
+	};
+	EXPECT_FALSE(showsCode(findTagQuads(img, 8)));
+	EXPECT_TRUE(showsCode(findTagQuads(img, std::numeric_limits<int>::max())));
 }
 
 TEST(ReadEvidence, WindowGridHasNoQuietZone)

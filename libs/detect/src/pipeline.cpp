@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <type_traits>
@@ -390,15 +391,19 @@ class CandidateDecoder
 		// the soft decoder: they already hold the Otsu dark-blob outlines,
 		// so searching the binarised and half-size variants again found the
 		// same squares at twice the cost.
-		const std::vector<Quad> quads = findTagQuads(plane.gray, p_.decoder.maxQuads);
+		std::vector<Quad> quads = findTagQuads(plane.gray, std::numeric_limits<int>::max());
 		// The cheapest sure test on the image: most clutter (window grids)
 		// has outlines only of one colour inside, or too small to be a tag.
 		// libapriltag, the costliest decoder, would search it three times.
+		// Every outline is looked at, not only the largest the decoders get:
+		// libapriltag finds its own, and a small tag in a busy image may be
+		// outline number 9.
 		if (std::none_of(quads.begin(), quads.end(), [&](const Quad& q) { return mayShowATag(q, plane); }))
 		{
 			out.report.verdict = Verdict::NoCodeShown;
 			return out;
 		}
+		quads.resize(std::min(quads.size(), static_cast<size_t>(std::max(0, p_.decoder.maxQuads))));  // largest first
 		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
 		{
 			const std::vector<Quad> variantQuads = scaledQuads(quads, 1.0 / variant.scale);

@@ -103,7 +103,8 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 	for (double sigma : {1.0, 3.0})
 	{
 		cv::Mat dark;
-		cv::GaussianBlur(gray8, dark, cv::Size(), sigma);
+		if (sigma == 1.0) dark = smooth.clone();  // the same blur
+		else cv::GaussianBlur(gray8, dark, cv::Size(), sigma);
 		cv::threshold(dark, dark, 0, 255, cv::THRESH_BINARY_INV | cv::THRESH_OTSU);
 		std::vector<std::vector<cv::Point>> found;
 		cv::findContours(dark, found, cv::RETR_LIST, cv::CHAIN_APPROX_NONE);

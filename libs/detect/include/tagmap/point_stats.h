@@ -23,11 +23,18 @@ inline PointStats pointStats(const float* xs, const float* ys, const float* zs, 
 	if (pts.empty()) return s;
 	for (uint32_t i : pts) s.mean += Eigen::Vector3d(xs[i], ys[i], zs[i]);
 	s.mean /= static_cast<double>(pts.size());
+	// Six sums in registers, not a 3x3 matrix updated in memory: the
+	// compiler spilled that one, and the reloads stalled on every point
+	// (over half the time of rendering an intermediate plane). The same
+	// products in the same order: the same result to the last bit.
+	double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+	const double mx = s.mean.x(), my = s.mean.y(), mz = s.mean.z();
 	for (uint32_t i : pts)
 	{
-		const Eigen::Vector3d d = Eigen::Vector3d(xs[i], ys[i], zs[i]) - s.mean;
-		s.scatter += d * d.transpose();
+		const double dx = xs[i] - mx, dy = ys[i] - my, dz = zs[i] - mz;
+		xx += dx * dx, xy += dx * dy, xz += dx * dz, yy += dy * dy, yz += dy * dz, zz += dz * dz;
 	}
+	s.scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
 	return s;
 }
 
