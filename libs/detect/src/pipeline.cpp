@@ -248,6 +248,24 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 	return candidates;
 }
 
+// The fewest and the most cells across a border square among `families`
+// (aruco_4x4: 6, aruco_7x7: 9); both 0 when there are none.
+struct BorderCellsRange
+{
+	int fewest = 0, most = 0;
+};
+BorderCellsRange borderCellsAcross(const std::vector<std::string>& families)
+{
+	BorderCellsRange r;
+	for (const std::string& f : families)
+	{
+		const int cells = renderTagBitmap(f, 0).borderCells;
+		r.fewest = r.fewest > 0 ? std::min(r.fewest, cells) : cells;
+		r.most = std::max(r.most, cells);
+	}
+	return r;
+}
+
 // Stages 1-3 for a scan in its sensor frame (sensor_view.h), first half:
 // the scan as its sensor sees it and every read of it, by libapriltag and
 // by the soft decoder. Needs none of the scan's measured lengths.
@@ -258,12 +276,7 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	if (out.view.gray.empty()) return out;
 	// The smallest tag a scan can show: a point on every cell of the family
 	// with the fewest cells across its border square.
-	int fewestCells = 0;
-	for (const std::string& f : families)
-	{
-		const int cells = renderTagBitmap(f, 0).borderCells;
-		fewestCells = fewestCells > 0 ? std::min(fewestCells, cells) : cells;
-	}
+	const int fewestCells = borderCellsAcross(families).fewest;
 	const std::vector<Quad> quads =
 		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
 	out.reads = hard.decode(out.view.gray, &quads);
@@ -326,8 +339,7 @@ std::vector<std::string> familiesAsked(const PipelineParams& p)
 // 0.17 m tag in a 3 m window of a sparse wall).
 double smallestReportableCell(const PipelineParams& p, const std::vector<std::string>& families)
 {
-	int most = 0;
-	for (const std::string& f : families) most = std::max(most, renderTagBitmap(f, 0).borderCells);
+	const int most = borderCellsAcross(families).most;
 	const double side = p.tagSize > 0 ? p.tagSize * (1 - kGivenSizeTolerance) : p.candidates.minTagSize;
 	return most > 0 ? side / most : 0;
 }
