@@ -259,7 +259,7 @@ BorderCellsRange borderCellsAcross(const std::vector<std::string>& families)
 	BorderCellsRange r;
 	for (const std::string& f : families)
 	{
-		const int cells = renderTagBitmap(f, 0).borderCells;
+		const int cells = findFamily(f)->borderCells;
 		r.fewest = r.fewest > 0 ? std::min(r.fewest, cells) : cells;
 		r.most = std::max(r.most, cells);
 	}
@@ -331,6 +331,13 @@ std::vector<std::string> familiesAsked(const PipelineParams& p)
 	return p.families.empty() ? parseFamilyList("") : p.families;
 }
 
+// The smallest border square a detection can report: --tag-size less its
+// tolerance, else candidates.min_tag_size.
+double smallestSideAsked(const PipelineParams& p)
+{
+	return p.tagSize > 0 ? p.tagSize * (1 - kGivenSizeTolerance) : p.candidates.minTagSize;
+}
+
 // The smallest cell of any tag a detection can report: the smallest size
 // asked for over the most cells across a border square of the families
 // decoded (aruco_7x7: 9); 0 when none. The images need not resolve anything
@@ -340,8 +347,7 @@ std::vector<std::string> familiesAsked(const PipelineParams& p)
 double smallestReportableCell(const PipelineParams& p, const std::vector<std::string>& families)
 {
 	const int most = borderCellsAcross(families).most;
-	const double side = p.tagSize > 0 ? p.tagSize * (1 - kGivenSizeTolerance) : p.candidates.minTagSize;
-	return most > 0 ? side / most : 0;
+	return most > 0 ? smallestSideAsked(p) / most : 0;
 }
 
 // The orientations each quad is read in: 4 rotations, each also mirrored.
@@ -364,7 +370,6 @@ class CandidateDecoder
 		  // searched and the orientations each quad was tried in.
 		  searched_(searchFamilies(familiesAsked(p))),
 		  readOrientations_(readOrientations(p)),
-		  anyFamilyDecoded_(!decodedFamilies.empty()),
 		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies))),
 		  smallestCell_(smallestReportableCell(p, decodedFamilies)),
 		  decodedFamilies_(decodedFamilies)
@@ -376,7 +381,7 @@ class CandidateDecoder
 									 const SoftTagDecoder& soft) const
 	{
 		CandidateOutcome out{{}, std::move(rep)};
-		if (!anyFamilyDecoded_)
+		if (decodedFamilies_.empty())
 		{
 			out.report.verdict = Verdict::NoFamilyCanPass;
 			return out;
@@ -498,10 +503,8 @@ class CandidateDecoder
 	// they follow: half the smallest side asked for is far below any read's.
 	bool mayShowATag(const Quad& q, const PlaneImage& plane) const
 	{
-		double side = 0;
-		for (int k = 0; k < 4; k++) side += 0.25 * (q[(k + 1) % 4] - q[k]).norm() * plane.frame.pixel;
-		const double smallest = p_.tagSize > 0 ? p_.tagSize * (1 - kGivenSizeTolerance) : sizes_.minTagSize;
-		return side >= 0.5 * smallest && quadCanShowACode(plane.gray, q, decodedFamilies_, p_.evidence);
+		return measuredTagSize(q, plane) >= 0.5 * smallestSideAsked(p_) &&
+			   quadCanShowACode(plane.gray, q, decodedFamilies_, p_.evidence);
 	}
 
 	bool sizeAsked(double measured) const
@@ -551,7 +554,6 @@ class CandidateDecoder
 	const CandidateFilterParams sizes_;
 	const std::vector<std::string> searched_;
 	const int readOrientations_;
-	const bool anyFamilyDecoded_;
 	const size_t fewestPoints_;  // fewestCellsToRead() of the families decoded
 	const double smallestCell_;  // smallestReportableCell(): the finest the images need resolve
 	const std::vector<std::string> decodedFamilies_;  // what the decoders search

@@ -242,7 +242,7 @@ bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs
 	// The read's quad is the border square; the printed tag reaches a cell
 	// further (the quiet zone), as far as the edge points of a map path
 	// cluster do.
-	const int cells = renderTagBitmap(read.family, 0).borderCells;
+	const int cells = findFamily(read.family)->borderCells;
 	const double grow = cells > 0 ? (cells + 2.0) / cells : 1.0;
 	box.extent = Eigen::Vector3d(grow * 0.5 * across.norm() + 2 * band, grow * 0.5 * std::abs(down.dot(box.axes.col(1))) + 2 * band,
 								 box.thickness);

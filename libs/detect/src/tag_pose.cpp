@@ -16,11 +16,16 @@ Eigen::Matrix<double, 6, 6> tagFrameCovarianceToMap(const Eigen::Matrix3d& R, co
 	return C;
 }
 
-double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane)
+double measuredTagSize(const Quad& corners, const PlaneImage& plane)
 {
 	double side = 0;
-	for (int k = 0; k < 4; k++) side += (decoded.corners[(k + 1) % 4] - decoded.corners[k]).norm() / 4;
+	for (int k = 0; k < 4; k++) side += (corners[(k + 1) % 4] - corners[k]).norm() / 4;
 	return side * plane.frame.pixel;
+}
+
+double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane)
+{
+	return measuredTagSize(decoded.corners, plane);
 }
 
 TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, double knownSize)

@@ -6,11 +6,14 @@
 #include "tagmap/intermediate_plane.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_detection.h"
+#include "tagmap/tag_quads.h"
 
 namespace tagmap
 {
 /** The border square's mean edge in metres, from the decoded corners. */
 double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane);
+/** The same for any outline on the image (tag_quads.h). */
+double measuredTagSize(const Quad& corners, const PlaneImage& plane);
 
 /** `knownSize` > 0 forces the model size; otherwise it is measured from
  *  the corners. The tag's z axis is the plane normal, oriented by the
