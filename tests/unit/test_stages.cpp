@@ -137,6 +137,31 @@ TEST(VoxelGrid, RowScanVisitsTheSameVoxelsAsFind)
 			}
 }
 
+TEST(VoxelGrid, BlockScanVisitsTheSameVoxelsAsFind)
+{
+	// Blocks of many rows, some reaching outside the grid: the cursor that
+	// steps forward from row to row (and plane to plane) finds exactly the
+	// voxels find() reports cell by cell, in ascending index.
+	std::mt19937 rng(4);
+	std::uniform_real_distribution<float> u(0.0f, 1.0f);
+	std::vector<float> x(5000), y(5000), z(5000);
+	for (size_t i = 0; i < x.size(); i++) x[i] = u(rng), y[i] = u(rng), z[i] = 0.5f * u(rng);
+	const VoxelGrid grid(x.data(), y.data(), z.data(), x.size(), 0.05, 1);
+	std::uniform_int_distribution<int> corner(-3, 22), side(0, 12);
+	for (int trial = 0; trial < 200; trial++)
+	{
+		const VoxelKey lo{corner(rng), corner(rng), corner(rng) / 2};
+		const VoxelKey hi{lo.x + side(rng), lo.y + side(rng), lo.z + side(rng) / 2};
+		std::vector<size_t> scanned, found;
+		grid.forEachVoxelInBlock(lo, hi, [&](size_t v) { scanned.push_back(v); });
+		for (int zk = lo.z; zk <= hi.z; zk++)
+			for (int yk = lo.y; yk <= hi.y; yk++)
+				for (int xk = lo.x; xk <= hi.x; xk++)
+					if (const int64_t v = grid.find({xk, yk, zk}); v >= 0) found.push_back(static_cast<size_t>(v));
+		EXPECT_EQ(scanned, found) << trial;
+	}
+}
+
 TEST(OctreeGather, TreeAndRowSearchGatherExactlyTheBoxesPoints)
 {
 	// A small cloud (no tree: voxel rows searched directly) and a large one

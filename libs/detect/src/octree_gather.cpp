@@ -91,26 +91,19 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 	// Axis-aligned bounds of the enlarged box, for the octree query.
 	const Eigen::Vector3d reach = box.axes.cwiseAbs() * half;
 	const Eigen::Vector3d lo = box.center - reach, hi = box.center + reach;
-	std::vector<uint32_t> out;
 	const double cell = grid_.cellSize();
-	// The voxels within [a, b] (clipped to the query bounds): their points inside the box.
-	const auto gatherBetween = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+	// The rows of voxels within [a, b] (clipped to the query bounds).
+	std::vector<VoxelGrid::KeySpan> spans;
+	const auto addBlock = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 		const Eigen::Vector3d qa = a.cwiseMax(lo), qb = b.cwiseMin(hi);
 		const VoxelKey ka = grid_.keyOf((qa.array() + cell * 1e-6).matrix().cast<float>());
 		const VoxelKey kb = grid_.keyOf((qb.array() - cell * 1e-6).matrix().cast<float>());
+		VoxelGrid::KeySpan r;
 		for (int z = ka.z; z <= kb.z; z++)
 			for (int y = ka.y; y <= kb.y; y++)
-				grid_.forEachVoxelInRow(ka.x, kb.x, y, z, [&](size_t v) {
-					for (const uint32_t* p = grid_.begin(v); p != grid_.end(v); ++p)
-					{
-						const Eigen::Vector3d q =
-							box.axes.transpose() * (Eigen::Vector3d(xs[*p], ys[*p], zs[*p]) - box.center);
-						if (std::abs(q.x()) <= half.x() && std::abs(q.y()) <= half.y() && std::abs(q.z()) <= half.z())
-							out.push_back(*p);
-					}
-				});
+				if (grid_.rowSpan(ka.x, kb.x, y, z, r)) spans.push_back(r);
 	};
-	if (!tree_) gatherBetween(lo, hi);
+	if (!tree_) addBlock(lo, hi);
 	else
 		for (auto it = tree_->begin_leafs_bbx(octomap::point3d(lo.x(), lo.y(), lo.z()),
 											 octomap::point3d(hi.x(), hi.y(), hi.z())),
@@ -120,8 +113,27 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 			if (!tree_->isNodeOccupied(*it)) continue;
 			// Neighbour-grid voxels under this leaf.
 			const Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
-			gatherBetween(c.array() - it.getSize() / 2, c.array() + it.getSize() / 2);
+			addBlock(c.array() - it.getSize() / 2, c.array() + it.getSize() / 2);
 		}
+	// The leaves' rows in key order, those that touch joined: the voxels
+	// are then visited by one cursor moving forward (forEachVoxelInSpans).
+	std::sort(spans.begin(), spans.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+	size_t kept = 0;
+	for (size_t s = 0; s < spans.size(); s++)
+		if (kept > 0 && spans[s].first <= spans[kept - 1].last + 1)
+			spans[kept - 1].last = std::max(spans[kept - 1].last, spans[s].last);
+		else
+			spans[kept++] = spans[s];
+	spans.resize(kept);
+	std::vector<uint32_t> out;
+	grid_.forEachVoxelInSpans(spans, [&](size_t v) {
+		for (const uint32_t* p = grid_.begin(v); p != grid_.end(v); ++p)
+		{
+			const Eigen::Vector3d q = box.axes.transpose() * (Eigen::Vector3d(xs[*p], ys[*p], zs[*p]) - box.center);
+			if (std::abs(q.x()) <= half.x() && std::abs(q.y()) <= half.y() && std::abs(q.z()) <= half.z())
+				out.push_back(*p);
+		}
+	});
 	radixSort(out);
 	out.erase(std::unique(out.begin(), out.end()), out.end());
 	return out;

@@ -63,23 +63,65 @@ class VoxelGrid
 	template <typename F>
 	void forEachVoxelInRow(int x0, int x1, int y, int z, F&& f) const
 	{
-		if (y < 0 || z < 0 || static_cast<uint64_t>(y) >= dims_[1] || static_cast<uint64_t>(z) >= dims_[2]) return;
+		forEachVoxelInBlock({x0, y, z}, {x1, y, z}, f);
+	}
+
+	/** Voxels with linear keys first..last (inclusive): a stretch of a row,
+	 *  or rows joined end to end (keys run along x, then y, then z). */
+	struct KeySpan
+	{
+		uint64_t first = 0, last = 0;
+	};
+
+	/** The span of row (y, z) with x in [x0, x1], clipped to the grid;
+	 *  false when nothing of it is in the grid. */
+	bool rowSpan(int x0, int x1, int y, int z, KeySpan& out) const
+	{
+		if (y < 0 || z < 0 || static_cast<uint64_t>(y) >= dims_[1] || static_cast<uint64_t>(z) >= dims_[2]) return false;
 		x0 = std::max(x0, 0);
 		x1 = static_cast<int>(std::min<int64_t>(x1, static_cast<int64_t>(dims_[0]) - 1));
-		if (x1 < x0) return;
-		const uint64_t last = linear({x1, y, z});
-		for (auto it = std::lower_bound(keys_.begin(), keys_.end(), linear({x0, y, z})); it != keys_.end() && *it <= last; ++it)
-			f(static_cast<size_t>(it - keys_.begin()));
+		if (x1 < x0) return false;
+		out = {linear({x0, y, z}), linear({x1, y, z})};
+		return true;
+	}
+
+	/** Calls f(voxelIndex) for every non-empty voxel of `spans` (ascending,
+	 *  not overlapping), in ascending index. One cursor moves forward
+	 *  through the voxels: the first span's first voxel is a binary search,
+	 *  each next one is found from where the span before ended by steps
+	 *  doubling from there: a few probes near the cursor instead of a
+	 *  binary search over every voxel of the map (most of a gather's time). */
+	template <typename F>
+	void forEachVoxelInSpans(const std::vector<KeySpan>& spans, F&& f) const
+	{
+		auto cursor = keys_.begin();
+		for (size_t s = 0; s < spans.size(); s++)
+		{
+			cursor = s == 0 ? std::lower_bound(cursor, keys_.end(), spans[s].first) : firstNotBelow(cursor, spans[s].first);
+			for (; cursor != keys_.end() && *cursor <= spans[s].last; ++cursor) f(static_cast<size_t>(cursor - keys_.begin()));
+		}
+	}
+
+	/** Calls f(voxelIndex) for every non-empty voxel with a key in the block
+	 *  [lo, hi] (each axis inclusive), in ascending index. */
+	template <typename F>
+	void forEachVoxelInBlock(const VoxelKey& lo, const VoxelKey& hi, F&& f) const
+	{
+		std::vector<KeySpan> spans;
+		KeySpan r;
+		for (int z = lo.z; z <= hi.z; z++)
+			for (int y = lo.y; y <= hi.y; y++)
+				if (rowSpan(lo.x, hi.x, y, z, r)) spans.push_back(r);
+		forEachVoxelInSpans(spans, f);
 	}
 
 	/** Calls f(voxelIndex) for every non-empty voxel in the (2r+1)^3 block
-	 *  around k, in ascending voxel index. Binary searches: for sweeping
-	 *  all voxels, NeighbourSweep is much faster. */
+	 *  around k, in ascending voxel index. For sweeping all voxels,
+	 *  NeighbourSweep is much faster. */
 	template <typename F>
 	void forEachNeighbourVoxel(const VoxelKey& k, int r, F&& f) const
 	{
-		for (int dz = -r; dz <= r; dz++)
-			for (int dy = -r; dy <= r; dy++) forEachVoxelInRow(k.x - r, k.x + r, k.y + dy, k.z + dz, f);
+		forEachVoxelInBlock({k.x - r, k.y - r, k.z - r}, {k.x + r, k.y + r, k.z + r}, f);
 	}
 
 	/** The 3x3x3 neighbourhoods of voxels visited in ascending order: nine
@@ -112,6 +154,20 @@ class VoxelGrid
 		int64_t realOf(int32_t k) const;
 	};
 	int64_t realCell(double p, int a) const { return static_cast<int64_t>(std::floor((p - origin_[a]) / cellSize_)); }
+
+	/** The first key at or after `from` not below `target`, by steps
+	 *  doubling from `from`, then a binary search in the last step. */
+	std::vector<uint64_t>::const_iterator firstNotBelow(std::vector<uint64_t>::const_iterator from, uint64_t target) const
+	{
+		if (from == keys_.end() || *from >= target) return from;
+		auto below = from;  // *below < target
+		for (std::ptrdiff_t step = 1;; step *= 2)
+		{
+			if (keys_.end() - below <= step) return std::lower_bound(below + 1, keys_.end(), target);
+			if (below[step] >= target) return std::lower_bound(below + 1, below + step, target);
+			below += step;
+		}
+	}
 
 	uint64_t linear(const VoxelKey& k) const
 	{
