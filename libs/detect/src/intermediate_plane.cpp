@@ -34,14 +34,27 @@ cv::Mat blurredAtScale(const cv::Mat& img, double s)
 void fillHoles(const cv::Mat& wsum, const cv::Mat& isum, double firstSigma, double maxSigma, cv::Mat& img,
 			   cv::Mat& known)
 {
-	for (double s = firstSigma; cv::countNonZero(known) < known.rows * known.cols && s < maxSigma; s *= 2)
+	// One pass over the pixels per scale: the unknown ones the blurred
+	// weights reach take the blurred mean (a chain of whole-image
+	// operations here cost more than the blurs themselves).
+	size_t unknown = known.total() - static_cast<size_t>(cv::countNonZero(known));
+	for (double s = firstSigma; unknown > 0 && s < maxSigma; s *= 2)
 	{
 		const cv::Mat bw = blurredAtScale(wsum, s), bi = blurredAtScale(isum, s);
-		cv::Mat filled;
-		cv::divide(bi, bw + 1e-9f, filled);
-		cv::Mat holes = ~known & (bw > 1e-4f);
-		filled.copyTo(img, holes);
-		known |= holes;
+		for (int r = 0; r < img.rows; r++)
+		{
+			const float* w = bw.ptr<float>(r);
+			const float* i = bi.ptr<float>(r);
+			float* value = img.ptr<float>(r);
+			uint8_t* isKnown = known.ptr<uint8_t>(r);
+			for (int c = 0; c < img.cols; c++)
+				if (!isKnown[c] && w[c] > 1e-4f)
+				{
+					value[c] = i[c] / (w[c] + 1e-9f);
+					isKnown[c] = 255;
+					unknown--;
+				}
+		}
 	}
 }
 
