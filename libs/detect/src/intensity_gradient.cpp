@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "tagmap/parallel.h"
@@ -21,32 +22,6 @@ double robustIntensitySpread(const float* is, size_t n)
 	const double p5 = quantileInPlace(s, 0.05), p95 = quantileInPlace(s, 0.95);
 	return p95 - p5;
 }
-
-namespace
-{
-// The map's points in voxel order, one array per field: a voxel's 3x3x3
-// block is a few contiguous runs (one per row), read four points at a time.
-struct SortedPoints
-{
-	std::vector<float> x, y, z, i;
-};
-
-struct Span
-{
-	uint32_t begin, end;
-};
-
-using Float4 = float __attribute__((vector_size(16)));
-using Int4 = int32_t __attribute__((vector_size(16)));
-
-float sum4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-
-struct SurfaceSlope
-{
-	double norm = 0;  // |A|
-	double explained = 0;  // variance of A^T x: the part of var(I) the slope explains
-	int directions = 0;  // how many directions the slope was fitted along (2 on a surface)
-};
 
 /** The least-squares slope A = C^-1 c (C: covariance of the neighbours'
  *  positions, c: their covariance with intensity), solved along the
@@ -77,6 +52,41 @@ SurfaceSlope surfaceSlope(const Eigen::Matrix3d& C, const Eigen::Vector3d& c)
 	return out;
 }
 
+/** An upper bound of surfaceSlope(C, c).norm without solving for C's
+ *  eigenvectors: every direction the slope is fitted along has an
+ *  eigenvalue of at least a quarter of the largest, and the largest is at
+ *  least any Rayleigh quotient (each diagonal entry, and c'Cc / c'c), so
+ *  |A| <= |c| / (largest / 4). For a slope along a surface that is 4 |A|:
+ *  enough to skip the solve on the plain surfaces most of a map is.
+ *  Infinite when C has no positive quotient (the solve then decides). A
+ *  small margin covers the solver's rounding: a bound is only used to skip. */
+double slopeBound(const Eigen::Matrix3d& C, const Eigen::Vector3d& c)
+{
+	const double cc = c.squaredNorm();
+	const double largest = std::max({C(0, 0), C(1, 1), C(2, 2), cc > 0 ? c.dot(C * c) / cc : 0.0});
+	if (!(largest > 0)) return std::numeric_limits<double>::infinity();
+	return 1.001 * 4 * std::sqrt(cc) / largest;
+}
+
+namespace
+{
+// The map's points in voxel order, one array per field: a voxel's 3x3x3
+// block is a few contiguous runs (one per row), read four points at a time.
+struct SortedPoints
+{
+	std::vector<float> x, y, z, i;
+};
+
+struct Span
+{
+	uint32_t begin, end;
+};
+
+using Float4 = float __attribute__((vector_size(16)));
+using Int4 = int32_t __attribute__((vector_size(16)));
+
+float sum4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
 /** The fraction of the intensity variance that a slope fitted along
  *  `directions` directions explains by chance, with probability 1e-3, when
  *  the `count` intensities are pure noise: R^2 then follows
@@ -101,8 +111,12 @@ double chanceExplained(int count, int directions)
 // solved by surfaceSlope(), along the surface only. The sums are float, four
 // points per step in a fixed order, so the result is the same on any
 // thread; a point outside r adds exact zeros (no branch per neighbour).
+// `enoughBelow`: a caller that only asks whether the result is below this
+// gets an upper bound of the norm instead, when the bound already is (no
+// eigen-solve; see slopeBound()), and `beatsChance` is then not set.
 double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, const Span* spans, int spanCount,
-					double radius, int minNeighbours, double minExplained, bool* beatsChance = nullptr)
+					double radius, int minNeighbours, double minExplained, bool* beatsChance = nullptr,
+					double enoughBelow = 0)
 {
 	const float cx = centre.x(), cy = centre.y(), cz = centre.z(), r2 = static_cast<float>(radius * radius);
 	const Float4 vcx = {cx, cx, cx, cx}, vcy = {cy, cy, cy, cy}, vcz = {cz, cz, cz, cz}, vr2 = {r2, r2, r2, r2};
@@ -158,6 +172,8 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 	Eigen::Matrix3d C = S / count - mx * mx.transpose();
 	const Eigen::Vector3d c = Eigen::Vector3d(sum4(sxi), sum4(syi), sum4(szi)) / count - mx * mi;
 	const double varI = sum4(sii) / count - mi * mi;
+	if (enoughBelow > 0)
+		if (const double bound = slopeBound(C, c); bound < enoughBelow) return bound;
 	const SurfaceSlope slope = surfaceSlope(C, c);
 	// How much of the intensity variance the plane I = A^T x + b explains.
 	// An edge is explained well (about 0.6-0.75 for a step across the
@@ -239,14 +255,15 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre's key then.
 			const Eigen::Vector3f probe = grid.keyOf(c) == grid.keyOfVoxel(v) ? c : mid;
 			// 1.5 r: an edge anywhere in the voxel is within reach of the centroid.
-			const double coarse = gradientNorm(probe, sorted, spans, spanCount, 1.5 * radius, p.minNeighbours, 0.0);
+			const double coarse =
+				gradientNorm(probe, sorted, spans, spanCount, 1.5 * radius, p.minNeighbours, 0.0, nullptr, 0.5 * cut);
 			if (coarse >= 0 && coarse < 0.5 * cut) continue;
 			for (size_t k = first; k < last; k++)
 			{
 				const Eigen::Vector3f q(sorted.x[k], sorted.y[k], sorted.z[k]);
 				bool significant = true;
 				const double g =
-					gradientNorm(q, sorted, spans, spanCount, radius, p.minNeighbours, p.minExplained, &significant);
+					gradientNorm(q, sorted, spans, spanCount, radius, p.minNeighbours, p.minExplained, &significant, cut);
 				keep[order[k]] = g < 0 ? kSparse : (g >= cut ? (significant ? kKeep : kKeepByChance) : kDrop);
 			}
 		}

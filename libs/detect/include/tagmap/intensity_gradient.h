@@ -5,6 +5,7 @@
 // survive while plain walls, floors and cars are dropped.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
@@ -57,6 +58,24 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 												  const VoxelGrid& grid, double radius, const IntensityGradientParams& p,
 												  unsigned threads, double spread = 0,
 												  const CountProgressFn& progress = {});
+
+/** The slope fitted at one point: its norm, how much of the intensity
+ *  variance it explains, and along how many directions it was fitted. */
+struct SurfaceSlope
+{
+	double norm = 0;  // |A|
+	double explained = 0;  // variance of A^T x: the part of var(I) the slope explains
+	int directions = 0;  // how many directions the slope was fitted along (2 on a surface)
+};
+
+/** The least-squares slope A = C^-1 c from the neighbours' position
+ *  covariance C and their position-intensity covariance c, solved along
+ *  C's principal directions that spread at least a quarter as much as the
+ *  widest (along a surface, not its noise-thin normal). */
+SurfaceSlope surfaceSlope(const Eigen::Matrix3d& C, const Eigen::Vector3d& c);
+
+/** An upper bound of surfaceSlope(C, c).norm, without the eigen-solve. */
+double slopeBound(const Eigen::Matrix3d& C, const Eigen::Vector3d& c);
 
 /** Robust intensity range p95 - p5 (from a strided sample; deterministic). */
 double robustIntensitySpread(const float* is, size_t n);
