@@ -115,18 +115,10 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 			const Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
 			addBlock(c.array() - it.getSize() / 2, c.array() + it.getSize() / 2);
 		}
-	// The leaves' rows in key order, those that touch joined: the voxels
-	// are then visited by one cursor moving forward (forEachVoxelInSpans).
-	std::sort(spans.begin(), spans.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-	size_t kept = 0;
-	for (size_t s = 0; s < spans.size(); s++)
-		if (kept > 0 && spans[s].first <= spans[kept - 1].last + 1)
-			spans[kept - 1].last = std::max(spans[kept - 1].last, spans[s].last);
-		else
-			spans[kept++] = spans[s];
-	spans.resize(kept);
+	// All the leaves' rows at once: side by side along x they join, and one
+	// cursor moving forward visits their voxels (forEachVoxelInSpans).
 	std::vector<uint32_t> out;
-	grid_.forEachVoxelInSpans(spans, [&](size_t v) {
+	grid_.forEachVoxelInSpans(std::move(spans), [&](size_t v) {
 		for (const uint32_t* p = grid_.begin(v); p != grid_.end(v); ++p)
 		{
 			const Eigen::Vector3d q = box.axes.transpose() * (Eigen::Vector3d(xs[*p], ys[*p], zs[*p]) - box.center);
@@ -134,8 +126,7 @@ std::vector<uint32_t> OctreeGatherer::gather(const OrientedBox& box, double spac
 				out.push_back(*p);
 		}
 	});
-	radixSort(out);
-	out.erase(std::unique(out.begin(), out.end()), out.end());
+	radixSort(out);  // each voxel was visited once: no point twice
 	return out;
 }
 

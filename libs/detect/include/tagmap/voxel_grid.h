@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace tagmap
@@ -85,15 +86,24 @@ class VoxelGrid
 		return true;
 	}
 
-	/** Calls f(voxelIndex) for every non-empty voxel of `spans` (ascending,
-	 *  not overlapping), in ascending index. One cursor moves forward
+	/** Calls f(voxelIndex) once for every non-empty voxel in any of `spans`
+	 *  (in any order, overlapping or not), in ascending index. The spans are
+	 *  sorted and those that touch joined; then one cursor moves forward
 	 *  through the voxels: the first span's first voxel is a binary search,
 	 *  each next one is found from where the span before ended by steps
 	 *  doubling from there: a few probes near the cursor instead of a
 	 *  binary search over every voxel of the map (most of a gather's time). */
 	template <typename F>
-	void forEachVoxelInSpans(const std::vector<KeySpan>& spans, F&& f) const
+	void forEachVoxelInSpans(std::vector<KeySpan> spans, F&& f) const
 	{
+		std::sort(spans.begin(), spans.end(), [](const KeySpan& a, const KeySpan& b) { return a.first < b.first; });
+		size_t joined = 0;
+		for (const KeySpan& s : spans)
+			if (joined > 0 && s.first <= spans[joined - 1].last + 1)
+				spans[joined - 1].last = std::max(spans[joined - 1].last, s.last);
+			else
+				spans[joined++] = s;
+		spans.resize(joined);
 		auto cursor = keys_.begin();
 		for (size_t s = 0; s < spans.size(); s++)
 		{
@@ -112,7 +122,7 @@ class VoxelGrid
 		for (int z = lo.z; z <= hi.z; z++)
 			for (int y = lo.y; y <= hi.y; y++)
 				if (rowSpan(lo.x, hi.x, y, z, r)) spans.push_back(r);
-		forEachVoxelInSpans(spans, f);
+		forEachVoxelInSpans(std::move(spans), f);
 	}
 
 	/** Calls f(voxelIndex) for every non-empty voxel in the (2r+1)^3 block
