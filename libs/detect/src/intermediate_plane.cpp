@@ -31,6 +31,24 @@ cv::Mat blurredAtScale(const cv::Mat& img, double s)
 }
 }  // namespace
 
+void normalisedMean(const cv::Mat& wsum, const cv::Mat& isum, float eps, float knownAbove, cv::Mat& img, cv::Mat& known)
+{
+	img.create(wsum.size(), CV_32F);
+	known.create(wsum.size(), CV_8U);
+	for (int r = 0; r < wsum.rows; r++)
+	{
+		const float* w = wsum.ptr<float>(r);
+		const float* i = isum.ptr<float>(r);
+		float* value = img.ptr<float>(r);
+		uint8_t* isKnown = known.ptr<uint8_t>(r);
+		for (int c = 0; c < wsum.cols; c++)
+		{
+			value[c] = i[c] / (w[c] + eps);
+			isKnown[c] = w[c] > knownAbove ? 255 : 0;
+		}
+	}
+}
+
 void fillHoles(const cv::Mat& wsum, const cv::Mat& isum, double firstSigma, double maxSigma, cv::Mat& img,
 			   cv::Mat& known)
 {
@@ -170,9 +188,8 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	}
 	// Holes (occlusion shadows, sparse scan lines): fill from ever blurrier
 	// versions of the same normalised convolution.
-	cv::Mat img;
-	cv::divide(isum, wsum + 1e-6f, img);
-	cv::Mat known = wsum > 0.05f;
+	cv::Mat img, known;
+	normalisedMean(wsum, isum, 1e-6f, 0.05f, img, known);
 	fillHoles(wsum, isum, 2 * sigmaPx, std::max(W, H), img, known);
 
 	out.gray = contrastNormalised(img, std::move(vals), known);

@@ -100,9 +100,14 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 	std::vector<uint32_t> valid;
 	std::vector<Eigen::Vector2d> ae;
 	std::vector<double> azimuths;
+	valid.reserve(n);
+	ae.reserve(n);
+	azimuths.reserve(n);
 	for (size_t i = 0; i < n; i++)
 	{
-		const double h = std::hypot(xs[i], ys[i]);
+		// hypotf's own arithmetic (the float inputs' squares summed in
+		// double, the root rounded to float), without its call.
+		const double h = static_cast<float>(std::sqrt(static_cast<double>(xs[i]) * xs[i] + static_cast<double>(ys[i]) * ys[i]));
 		if (!(h > 0 || zs[i] != 0) || !std::isfinite(h) || !std::isfinite(zs[i]) || !std::isfinite(is[i])) continue;
 		valid.push_back(static_cast<uint32_t>(i));
 		ae.emplace_back(std::atan2(ys[i], xs[i]), std::atan2(zs[i], h));
@@ -161,14 +166,13 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 	cv::Mat bw, bi;
 	cv::GaussianBlur(wsum, bw, cv::Size(), sigma);
 	cv::GaussianBlur(isum, bi, cv::Size(), sigma);
-	cv::Mat img;
-	cv::divide(bi, bw + 1e-9f, img);
+	cv::Mat img, known;
 	// Known where a point's splat is at least 5 % of its peak (the
 	// intermediate plane's rule); holes (between scan lines, a tag's part
 	// outside the field of view) are filled from blurrier versions up to
 	// `fillSpacings`, the rest (sky, beyond range) stays grey.
 	const float peak = static_cast<float>(1 / (2 * kPi * sigma * sigma));
-	cv::Mat known = bw > 0.05f * peak;
+	normalisedMean(bw, bi, 1e-9f, 0.05f * peak, img, known);
 	fillHoles(wsum, isum, 2 * sigma, p.fillSpacings * view.angularSpacing / view.pixel, img, known);
 	view.gray = contrastNormalised(img, std::move(vals), known);
 	return view;

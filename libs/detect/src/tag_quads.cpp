@@ -60,6 +60,9 @@ std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& smooth, const cv::Rotate
 	double x[4] = {seed.center.x + 0.5, seed.center.y + 0.5, 0.25 * (seed.size.width + seed.size.height),
 				   seed.angle * M_PI / 180};
 	double best = borderContrast(smooth, x[0], x[1], x[2], x[3]);
+	// A point met again (bit for bit) cannot win: its contrast was at most
+	// the best when it was met, and the best only grows.
+	std::vector<std::array<double, 4>> met = {{x[0], x[1], x[2], x[3]}};
 	for (double step = 0.1; step > 0.01; step *= 0.5)
 	{
 		const double steps[4] = {step * x[2], step * x[2], 0.5 * step * x[2], 0.5 * step};
@@ -69,10 +72,12 @@ std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& smooth, const cv::Rotate
 			for (int j = 0; j < 4; j++)
 				for (double sign : {-1.0, 1.0})
 				{
-					double y[4] = {x[0], x[1], x[2], x[3]};
+					std::array<double, 4> y = {x[0], x[1], x[2], x[3]};
 					y[j] += sign * steps[j];
+					if (std::find(met.begin(), met.end(), y) != met.end()) continue;
+					met.push_back(y);
 					const double v = borderContrast(smooth, y[0], y[1], y[2], y[3]);
-					if (y[2] > 2 && v > best) best = v, std::copy(y, y + 4, x), improved = true;
+					if (y[2] > 2 && v > best) best = v, std::copy(y.begin(), y.end(), x), improved = true;
 				}
 		}
 	}

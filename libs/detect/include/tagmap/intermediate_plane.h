@@ -58,6 +58,11 @@ struct PlaneImage
 	double localSpacing = 0;  // point spacing on the plane, metres
 };
 
+/** A normalised convolution's mean, `img` = isum / (wsum + eps), and where
+ *  it is `known` (wsum > knownAbove), in one pass over the pixels. Shared
+ *  by the intermediate plane and the sensor view. */
+void normalisedMean(const cv::Mat& wsum, const cv::Mat& isum, float eps, float knownAbove, cv::Mat& img, cv::Mat& known);
+
 /** Holes of a normalised convolution (`img` = isum / wsum where `known`):
  *  filled from ever blurrier versions of it, sigma `firstSigma` pixels,
  *  doubling while below `maxSigma` and pixels are unknown. Shared by the
