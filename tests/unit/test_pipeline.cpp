@@ -248,3 +248,28 @@ TEST(Pipeline, ASensorViewReadsTheTagAndAPlainOneStopsThere)
 	EXPECT_TRUE(plain.tags.empty());
 	EXPECT_EQ(stageNames(plain), std::vector<std::string>{"sensor_view"});
 }
+
+TEST(Pipeline, FindsATagPartlyInAScanGap)
+{
+	// A band across the tag's border and its last code column holds no
+	// point (a rosette's petal gap, an occluder's shadow): the code still
+	// shows on the other cells.
+	WallScene s;
+	s.spacing = 0.008;
+	TagDetection truth;
+	const auto wall = makeWall(s, truth);
+	mrpt::maps::CPointsMapXYZI map;
+	const double cell = s.size / 8;
+	for (size_t i = 0; i < wall.size(); i++)
+	{
+		const float x = wall.getPointsBufferRef_x()[i], y = wall.getPointsBufferRef_y()[i],
+					z = wall.getPointsBufferRef_z()[i], I = wall.getPointsBufferRef_intensity()[i];
+		if (x > 0.5 * s.size - 2.2 * cell && x < 0.5 * s.size - 0.2 * cell && std::abs(y) < 0.5 * s.size + 2 * cell)
+			continue;
+		map.insertPointRGB(x, y, z, I, 0, 0);
+	}
+	const Detections found = Pipeline().detect(map);
+	ASSERT_EQ(found.tags.size(), 1u);
+	EXPECT_EQ(found.tags[0].id, truth.id);
+	EXPECT_LT((found.tags[0].position() - truth.position()).norm(), 0.01);
+}

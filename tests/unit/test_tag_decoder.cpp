@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <opencv2/core.hpp>
+#include <opencv2/core/base.hpp>
 
+#include "tagmap/read_evidence.h"
+#include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_family.h"
 
@@ -78,4 +81,81 @@ TEST(TagDecoder, BlankImageDecodesNothing)
 	cv::Mat img(200, 200, CV_8UC1, cv::Scalar(200));
 	TagDecoder decoder({"tag36h11", "tag16h5", "aruco_4x4_50"});
 	EXPECT_TRUE(decoder.decode(img).empty());
+}
+
+namespace
+{
+// The right `fraction` of the border square of an image from drawTag()
+// left unscanned: its pixels hold the opposite of the tag (the worst a hole
+// filling can guess) and the returned mask marks them as not measured.
+cv::Mat eraseRightPart(cv::Mat& img, const std::array<Eigen::Vector2d, 4>& corners, double fraction)
+{
+	cv::Mat measured(img.size(), CV_8UC1, cv::Scalar(255));
+	const int x0 = static_cast<int>(corners[1].x() - fraction * (corners[1].x() - corners[0].x()));
+	const cv::Rect band(x0, 0, img.cols - x0, img.rows);
+	cv::Mat part = img(band);
+	cv::bitwise_not(part, part);
+	measured(band).setTo(0);
+	return measured;
+}
+}  // namespace
+
+TEST(SoftTagDecoder, ReadsATagPartlyInAScanGapOnItsScannedCells)
+{
+	std::array<Eigen::Vector2d, 4> corners;
+	cv::Mat img = drawTag("tag36h11", 5, 12, 30, corners);
+	const cv::Mat measured = eraseRightPart(img, corners, 0.3);
+	const SoftTagDecoder decoder({"tag36h11"});
+	const std::vector<Quad> quads = {corners};
+	// On the painted-over cells as they look, the code is not there.
+	for (const DecodedTag2D& d : decoder.decode(img, quads)) EXPECT_NE(d.id, 5);
+	const std::vector<DecodedTag2D> found = decoder.decode(img, quads, &measured);
+	ASSERT_EQ(found.size(), 1u);
+	EXPECT_EQ(found[0].id, 5);
+	EXPECT_FALSE(found[0].mirrored);
+	for (int k = 0; k < 4; k++) EXPECT_LT((found[0].corners[k] - corners[k]).norm(), 1e-9);
+	// The read stands on its scanned cells: chance, border and quiet zone.
+	const ReadEvidence e = assessMeasuredRead(img, measured, found[0], 8, {"tag36h11"}, {});
+	EXPECT_FALSE(e.rejection) << verdictName(*e.rejection);
+	EXPECT_GT(e.erasures, 0);
+	EXPECT_TRUE(assessRead(img, found[0], 8, {"tag36h11"}, {}).rejection);
+}
+
+TEST(SoftTagDecoder, MostlyUnscannedTagIsNotRead)
+{
+	std::array<Eigen::Vector2d, 4> corners;
+	cv::Mat img = drawTag("tag36h11", 5, 12, 30, corners);
+	const cv::Mat measured = eraseRightPart(img, corners, 0.6);
+	const SoftTagDecoder decoder({"tag36h11"});
+	EXPECT_TRUE(decoder.decode(img, {corners}, &measured).empty());
+	// Nor does a read of it pass with its frame mostly unscanned.
+	DecodedTag2D read;
+	read.family = "tag36h11";
+	read.id = 5;
+	read.corners = corners;
+	EXPECT_TRUE(assessMeasuredRead(img, measured, read, 8, {"tag36h11"}, {}).rejection);
+}
+
+TEST(ReadEvidence, MeasuredReadNeedsItsFrameScanned)
+{
+	// Every code cell scanned and right, the border ring and the quiet zone
+	// not scanned at all: nothing shows that the code is framed like a tag
+	// (and not part of a larger pattern).
+	std::array<Eigen::Vector2d, 4> corners;
+	const cv::Mat img = drawTag("tag36h11", 5, 12, 30, corners);
+	const double cell = (corners[1].x() - corners[0].x()) / 8;
+	cv::Mat measured(img.size(), CV_8UC1, cv::Scalar(0));
+	const int inner = static_cast<int>(corners[0].x() + cell), side = static_cast<int>(6 * cell);
+	measured(cv::Rect(inner, inner, side, side)).setTo(255);
+	DecodedTag2D read;
+	read.family = "tag36h11";
+	read.id = 5;
+	read.corners = corners;
+	const ReadEvidence e = assessMeasuredRead(img, measured, read, 8, {"tag36h11"}, {});
+	EXPECT_EQ(e.bitErrors, 0);
+	ASSERT_TRUE(e.rejection);
+	EXPECT_EQ(*e.rejection, Verdict::NoBorder);
+	// The same read with its frame scanned passes.
+	measured.setTo(255);
+	EXPECT_FALSE(assessMeasuredRead(img, measured, read, 8, {"tag36h11"}, {}).rejection);
 }

@@ -190,6 +190,7 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	// versions of the same normalised convolution.
 	cv::Mat img, known;
 	normalisedMean(wsum, isum, 1e-6f, 0.05f, img, known);
+	out.measured = known.clone();
 	fillHoles(wsum, isum, 2 * sigmaPx, std::max(W, H), img, known);
 
 	out.gray = contrastNormalised(img, std::move(vals), known);

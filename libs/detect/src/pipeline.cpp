@@ -280,7 +280,7 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	const std::vector<Quad> quads =
 		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
 	out.reads = hard.decode(out.view.gray, &quads);
-	for (DecodedTag2D& d : soft.decode(out.view.gray, quads)) out.reads.push_back(std::move(d));
+	for (DecodedTag2D& d : soft.decode(out.view.gray, quads, &out.view.measured)) out.reads.push_back(std::move(d));
 	return out;
 }
 
@@ -428,7 +428,7 @@ class CandidateDecoder
 				return out;
 		}
 		// Last resort for blurred tags: correlate quads with every code.
-		tryReads(soft.decode(plane.gray, quads), plane.gray, 1.0, plane, out);
+		tryReads(soft.decode(plane.gray, quads, &plane.measured), plane.gray, 1.0, plane, out);
 		return out;
 	}
 
@@ -440,7 +440,15 @@ class CandidateDecoder
 	{
 		for (DecodedTag2D& d : reads)
 		{
-			const ReadEvidence ev = assessRead(image, d, readOrientations_, searched_, p_.evidence);
+			ReadEvidence ev = assessRead(image, d, readOrientations_, searched_, p_.evidence);
+			// Cells in a gap of the scan hold the hole filling's guesses: a
+			// read they fail is judged again on the scanned cells alone.
+			if (ev.rejection && scale == 1)
+			{
+				ReadEvidence scanned =
+					assessMeasuredRead(image, plane.measured, d, readOrientations_, searched_, p_.evidence);
+				if (!scanned.rejection) ev = std::move(scanned);
+			}
 			for (auto& c : d.corners) c *= scale;
 			TagDetection t;
 			const Verdict v = ev.rejection ? *ev.rejection : verifyRead(d, ev, plane, t);

@@ -299,4 +299,20 @@ ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orie
 	return e;
 }
 
+ReadEvidence assessMeasuredRead(const cv::Mat& gray8, const cv::Mat& measured, const DecodedTag2D& read,
+								int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	const TagBitmap bm = renderTagBitmap(read.family, read.id);
+	std::vector<float> cells =
+		sampleMeasuredCells(gray8, measured, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+	ReadEvidence e = judgeCells(cells, read.family, read.id, read.hamming, orientations, searched, p);
+	e.cells = std::move(cells);
+	if (e.rejection || e.cells.empty()) return e;
+	const CellRoles& roles = rolesOf(read.family);
+	const auto total = [&](uint8_t role) { return static_cast<int>(std::count(roles.role.begin(), roles.role.end(), role)); };
+	if (e.borderCells < p.minMeasuredFrame * total(1)) e.rejection = Verdict::NoBorder;
+	else if (e.quietCells < p.minMeasuredFrame * total(2)) e.rejection = Verdict::NoQuietZone;
+	return e;
+}
+
 }  // namespace tagmap

@@ -16,6 +16,7 @@ struct SoftTagDecoder::FamilyCodes
 	int cells = 0, borderStart = 0, borderCells = 0;
 	std::vector<int> informative;  // cells whose colour differs between codes
 	std::vector<float> unit;  // idCount x informative.size()
+	std::vector<uint8_t> white;  // idCount x informative.size(): the codes' cells, 1 white
 	std::vector<uint8_t> borderMask;  // 1: a border-ring cell (black), 2: a quiet-zone cell (white)
 	int idCount = 0;
 };
@@ -79,6 +80,7 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	for (int id = 0; id < fc.idCount; id++)
 	{
 		for (size_t j = 0; j < n; j++) fc.unit[id * n + j] = bitmaps[id].pixels[fc.informative[j]] / 255.0f;
+		for (size_t j = 0; j < n; j++) fc.white.push_back(bitmaps[id].pixels[fc.informative[j]] != 0);
 		normalise(fc.unit, id * n, n);
 	}
 	// Cells every code shares: the border ring is black, the quiet zone white.
@@ -94,7 +96,91 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	return fc;
 }
 
-std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std::vector<Quad>& quads) const
+// The best code and the best other code, by Pearson correlation.
+struct SoftTagDecoder::BestCodes
+{
+	double best = -2, second = -2;
+	int bestId = -1, bestOrder = -1;
+
+	void offer(double r, int id, int order)
+	{
+		if (r > best)
+		{
+			if (!(bestId == id)) second = best;
+			best = r;
+			bestId = id;
+			bestOrder = order;
+		}
+		else if (r > second && id != bestId)
+			second = r;
+	}
+};
+
+SoftTagDecoder::BestCodes SoftTagDecoder::correlateAll(const FamilyCodes& fc, const std::vector<float>& sample)
+{
+	const size_t ni = fc.informative.size();
+	std::vector<float> data(ni);
+	BestCodes b;
+	for (int order = 0; order < 8; order++)
+	{
+		const std::vector<int>& perm = cellPermutation(fc.cells, order);
+		for (size_t j = 0; j < ni; j++) data[j] = sample[static_cast<size_t>(perm[fc.informative[j]])];
+		normalise(data, 0, ni);
+		for (int id = 0; id < fc.idCount; id++)
+		{
+			const float* u = &fc.unit[id * ni];
+			double dot = 0;
+			for (size_t j = 0; j < ni; j++) dot += u[j] * data[j];
+			b.offer(dot, id, order);
+		}
+	}
+	return b;
+}
+
+SoftTagDecoder::BestCodes SoftTagDecoder::correlateMeasured(const FamilyCodes& fc, const std::vector<float>& sample)
+{
+	// Over the measured cells S, with the data centred there (d), a code's
+	// 0/1 cells c correlate as sum_S c d / sqrt((w - w^2 / |S|) sum_S d^2),
+	// w its white cells in S: its mean over S drops out of the numerator.
+	const size_t ni = fc.informative.size();
+	BestCodes b;
+	std::vector<size_t> at;
+	std::vector<double> centred;
+	for (int order = 0; order < 8; order++)
+	{
+		const std::vector<int>& perm = cellPermutation(fc.cells, order);
+		at.clear();
+		centred.clear();
+		double mean = 0;
+		for (size_t j = 0; j < ni; j++)
+		{
+			const float v = sample[static_cast<size_t>(perm[fc.informative[j]])];
+			if (std::isnan(v)) continue;
+			at.push_back(j);
+			centred.push_back(v);
+			mean += v;
+		}
+		const double n = static_cast<double>(at.size());
+		if (n < 2) continue;
+		mean /= n;
+		double ss = 0;
+		for (double& d : centred) d -= mean, ss += d * d;
+		if (!(ss > 0)) continue;
+		for (int id = 0; id < fc.idCount; id++)
+		{
+			const uint8_t* white = &fc.white[id * ni];
+			double dot = 0, w = 0;
+			for (size_t k = 0; k < at.size(); k++)
+				if (white[at[k]]) dot += centred[k], w += 1;
+			const double spread = w - w * w / n;
+			b.offer(spread > 0 ? dot / std::sqrt(spread * ss) : 0.0, id, order);
+		}
+	}
+	return b;
+}
+
+std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std::vector<Quad>& quads,
+												 const cv::Mat* measured) const
 {
 	std::vector<DecodedTag2D> out;
 	if (!params_.enabled || families_.empty()) return out;
@@ -106,7 +192,8 @@ std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std
 			const size_t ni = fc.informative.size();
 			if (ni == 0) continue;
 			const std::vector<float> sample =
-				sampleCells(gray8, q, fc.cells, fc.borderStart, fc.borderStart + fc.borderCells);
+				measured ? sampleMeasuredCells(gray8, *measured, q, fc.cells, fc.borderStart, fc.borderStart + fc.borderCells)
+						 : sampleCells(gray8, q, fc.cells, fc.borderStart, fc.borderStart + fc.borderCells);
 			if (sample.empty()) continue;
 			// Shared cells first (the same in every orientation): a dark ring
 			// inside a light quiet zone, or this is no tag of this family.
@@ -114,35 +201,18 @@ std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std
 			int nr = 0, nq = 0;
 			for (size_t i = 0; i < sample.size(); i++)
 			{
+				if (std::isnan(sample[i])) continue;
 				if (fc.borderMask[i] == 1) ring += sample[i], nr++;
 				if (fc.borderMask[i] == 2) quiet += sample[i], nq++;
 			}
 			if (nr == 0 || nq == 0 || ring / nr + 20 > quiet / nq) continue;
-			std::vector<float> data(ni);
-			double best = -2, second = -2;
-			int bestId = -1, bestOrder = -1;
-			for (int order = 0; order < 8; order++)
-			{
-				const std::vector<int>& perm = cellPermutation(fc.cells, order);
-				for (size_t j = 0; j < ni; j++) data[j] = sample[static_cast<size_t>(perm[fc.informative[j]])];
-				normalise(data, 0, ni);
-				for (int id = 0; id < fc.idCount; id++)
-				{
-					const float* u = &fc.unit[id * ni];
-					double dot = 0;
-					for (size_t j = 0; j < ni; j++) dot += u[j] * data[j];
-					if (dot > best)
-					{
-						if (!(bestId == id)) second = best;
-						best = dot;
-						bestId = id;
-						bestOrder = order;
-					}
-					else if (dot > second && id != bestId)
-						second = dot;
-				}
-			}
-			if (bestId < 0 || best < params_.minCorrelation || best - second < params_.minGap) continue;
+			size_t erased = 0;
+			for (int k : fc.informative) erased += std::isnan(sample[static_cast<size_t>(k)]);
+			if (static_cast<double>(ni - erased) < params_.minMeasuredFraction * static_cast<double>(ni)) continue;
+			const BestCodes b = erased == 0 ? correlateAll(fc, sample) : correlateMeasured(fc, sample);
+			if (b.bestId < 0 || b.best < params_.minCorrelation || b.best - b.second < params_.minGap) continue;
+			const double best = b.best;
+			const int bestId = b.bestId, bestOrder = b.bestOrder;
 			DecodedTag2D d;
 			d.family = reportedFamily(requested_, family, bestId);
 			if (d.family.empty()) continue;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <opencv2/aruco.hpp>
@@ -223,7 +224,10 @@ Quad orderedCorners(const Quad& q, int order)
 	return c;
 }
 
-std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, int first, int last)
+namespace
+{
+std::vector<float> sampleGrid(const cv::Mat& gray8, const cv::Mat* measured, const Quad& q, int cells, int first,
+							  int last)
 {
 	// Homography from grid coordinates (cells) to the image.
 	const float b0 = static_cast<float>(first), b1 = static_cast<float>(last);
@@ -237,20 +241,37 @@ std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, i
 		{
 			// 3 x 3 points in the cell's middle: away from the blurred edges.
 			double acc = 0;
-			int cnt = 0;
+			int cnt = 0, measuredCount = 0;
 			for (double dy : {0.3, 0.5, 0.7})
 				for (double dx : {0.3, 0.5, 0.7})
 				{
 					const cv::Vec3d p = H * cv::Vec3d(col + dx, r + dy, 1.0);
-					const double v = sampleBilinear(gray8, p[0] / p[2], p[1] / p[2]);
+					const double x = p[0] / p[2], y = p[1] / p[2];
+					const double v = sampleBilinear(gray8, x, y);
 					if (v < 0) continue;
-					acc += v;
 					cnt++;
+					if (measured && !measured->at<uint8_t>(static_cast<int>(y), static_cast<int>(x))) continue;
+					acc += v;
+					measuredCount++;
 				}
 			if (cnt == 0) return {};
-			sample[static_cast<size_t>(r * cells + col)] = static_cast<float>(acc / cnt);
+			sample[static_cast<size_t>(r * cells + col)] =
+				measuredCount > 0 ? static_cast<float>(acc / measuredCount) : std::numeric_limits<float>::quiet_NaN();
 		}
 	return sample;
+}
+}  // namespace
+
+std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, int first, int last)
+{
+	return sampleGrid(gray8, nullptr, q, cells, first, last);
+}
+
+std::vector<float> sampleMeasuredCells(const cv::Mat& gray8, const cv::Mat& measured, const Quad& q, int cells,
+									   int first, int last)
+{
+	CV_Assert(measured.type() == CV_8UC1 && measured.size() == gray8.size());
+	return sampleGrid(gray8, &measured, q, cells, first, last);
 }
 
 const std::vector<int>& cellPermutation(int cells, int order)

@@ -53,6 +53,9 @@ struct PlaneImage
 {
 	PlaneFrame frame;
 	cv::Mat gray;  // CV_8UC1, contrast-normalised (2nd..98th percentile)
+	/** CV_8UC1, 255 where a point's splat reaches (before hole filling):
+	 *  what was scanned; the rest of `gray` is interpolated. */
+	cv::Mat measured;
 	std::vector<uint32_t> inliers;  // map indices of the points on the plane
 	double planeRms = 0;  // residual RMS of the plane fit, metres
 	double localSpacing = 0;  // point spacing on the plane, metres

@@ -43,6 +43,9 @@ struct ReadEvidenceParams
 	double maxBorderErrorRate = 0.1;
 	/** Quiet-zone cells allowed to read dark, as a fraction. */
 	double maxQuietErrorRate = 0.15;
+	/** assessMeasuredRead(): the fraction of the border ring's and of the
+	 *  quiet zone's cells that must have been scanned. */
+	double minMeasuredFrame = 0.5;
 };
 
 struct ReadEvidence
@@ -67,6 +70,13 @@ struct ReadEvidence
  *  codes of the dictionary actually searched). */
 ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
 						const std::vector<std::string>& searched, const ReadEvidenceParams& p);
+
+/** assessRead() with the cells nothing was scanned in erased
+ *  (sampleMeasuredCells()). A read whose border ring or quiet zone is
+ *  mostly erased shows no frame to judge: rejected (NoBorder,
+ *  NoQuietZone) unless minMeasuredFrame of each was measured. */
+ReadEvidence assessMeasuredRead(const cv::Mat& gray8, const cv::Mat& measured, const DecodedTag2D& read,
+								int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p);
 
 /** The same judgement on the cell values of a read of `family`:`id`
  *  (row-major over its whole grid, as sampleCells()); NaN marks a cell

@@ -27,6 +27,9 @@ struct SoftDecoderParams
 	 *  in 8 orientations is about 0.6 for the largest families. */
 	double minCorrelation = 0.7;
 	double minGap = 0.15;  // over the best other code
+	/** With some cells erased: the fewest code cells (of those that differ
+	 *  between codes) that must be measured to correlate at all. */
+	double minMeasuredFraction = 0.5;
 };
 
 class SoftTagDecoder
@@ -38,8 +41,12 @@ class SoftTagDecoder
 	SoftTagDecoder& operator=(const SoftTagDecoder&) = delete;
 
 	/** Tags among `quads` (findTagQuads) of an 8-bit grey image; corners as
-	 *  in TagDecoder. */
-	std::vector<DecodedTag2D> decode(const cv::Mat& gray8, const std::vector<Quad>& quads) const;
+	 *  in TagDecoder. `measured` (optional, sampleMeasuredCells()): cells
+	 *  nothing was scanned in are left out of the correlation (erasures), as
+	 *  long as most of the code's cells were scanned; a tag partly in a
+	 *  scan's gap then reads on the cells its points show. */
+	std::vector<DecodedTag2D> decode(const cv::Mat& gray8, const std::vector<Quad>& quads,
+									 const cv::Mat* measured = nullptr) const;
 
    private:
 	struct FamilyCodes;
@@ -47,6 +54,11 @@ class SoftTagDecoder
 	std::vector<std::string> requested_;
 	std::vector<std::string> families_;  // searched: nested ArUco collapsed
 	const FamilyCodes& codesOf(const std::string& family) const;
+	struct BestCodes;
+	/** The best and runner-up code over all 8 orientations of `sample`;
+	 *  with erased (NaN) cells, each compared on the measured cells only. */
+	static BestCodes correlateAll(const FamilyCodes& fc, const std::vector<float>& sample);
+	static BestCodes correlateMeasured(const FamilyCodes& fc, const std::vector<float>& sample);
 };
 
 }  // namespace tagmap

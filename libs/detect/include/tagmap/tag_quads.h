@@ -38,6 +38,13 @@ Quad orderedCorners(const Quad& q, int order);
  *  empty when part of the grid falls outside the image. */
 std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, int first, int last);
 
+/** sampleCells() from the pixels `measured` marks (CV_8UC1, non-zero: a
+ *  point was scanned there; the image's size) only: a cell none of whose
+ *  sample points is measured is NaN, an erasure (a gap in the scan the
+ *  image's hole filling painted over is no evidence of a colour). */
+std::vector<float> sampleMeasuredCells(const cv::Mat& gray8, const cv::Mat& measured, const Quad& q, int cells,
+									   int first, int last);
+
 /** Index map from the order-0 samples to those of `order`: sample k of
  *  order `order` is sample perm[k] of order 0. The grid is symmetric, so
  *  re-ordering the corners only permutes cells; no need to resample. */
