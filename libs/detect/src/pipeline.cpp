@@ -280,7 +280,7 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	const std::vector<Quad> quads =
 		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
 	out.reads = hard.decode(out.view.gray, &quads);
-	for (DecodedTag2D& d : soft.decode(out.view.gray, quads, &out.view.measured)) out.reads.push_back(std::move(d));
+	for (DecodedTag2D& d : soft.decode(out.view.gray, quads)) out.reads.push_back(std::move(d));
 	return out;
 }
 

@@ -173,7 +173,6 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 	// `fillSpacings`, the rest (sky, beyond range) stays grey.
 	const float peak = static_cast<float>(1 / (2 * kPi * sigma * sigma));
 	normalisedMean(bw, bi, 1e-9f, 0.05f * peak, img, known);
-	view.measured = known.clone();
 	fillHoles(wsum, isum, 2 * sigma, p.fillSpacings * view.angularSpacing / view.pixel, img, known);
 	view.gray = contrastNormalised(img, std::move(vals), known);
 	return view;

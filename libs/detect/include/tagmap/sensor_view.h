@@ -55,7 +55,6 @@ struct SensorViewParams
 struct SensorView
 {
 	cv::Mat gray;  // CV_8UC1, contrast-normalised like the intermediate plane
-	cv::Mat measured;  // CV_8UC1, 255 where a point's splat reaches (before hole filling)
 	double pixel = 0;  // radians per pixel
 	double azimuthLeft = 0, elevationTop = 0;  // radians at pixel edge (0, 0)
 	double angularSpacing = 0;  // radians, sqrt(solid angle covered / points)
