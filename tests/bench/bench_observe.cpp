@@ -115,11 +115,12 @@ std::vector<std::vector<TagDetection>> tagsPerScan(const mrpt::obs::CRawlog& obs
 // Why tags in view were not seen. A tag is in view of a frame when the
 // window's points cover its border square: per tag, the frames by the
 // fraction of the square's cells (s / borderCells on a side) holding at
-// least one point of its paper, seen / in view; and for the frames with
-// every cell covered but no sighting, what became of the candidate nearest
-// its centre ("not proposed": none within half the tag's size). A tag cut
-// by the edge of the field of view, or between a rosette's petals, is not
-// in view however many points fall on its paper.
+// least one point of its paper, seen / in view; and for the frames with at
+// least half the cells covered but no sighting, by coverage, what became
+// of the candidate nearest its centre ("not proposed": none within half
+// the tag's size). A tag cut by the edge of the field of view, or between
+// a rosette's petals, is not wholly in view however many points fall on
+// its paper.
 struct Coverage
 {
 	double cellsHit = 0;  // fraction of the border square's cells with a point
@@ -158,7 +159,7 @@ void printMisses(const sim::SimulationOutput& sim, const localize::ObserveReport
 {
 	const std::vector<double> bins = {0.01, 0.5, 0.9, 1.0};
 	std::printf("\nper tag: frames by the fraction of its border square's cells holding a point, seen / frames; "
-				"for fully covered frames not seen, the nearest candidate's verdict\n");
+				"for frames at least half covered and not seen, the nearest candidate's verdict\n");
 	std::map<std::string, size_t> allWhy;
 	size_t fullFrames = 0, fullSeen = 0;
 	for (size_t t = 0; t < sim.truth.size(); t++)
@@ -178,9 +179,8 @@ void printMisses(const sim::SimulationOutput& sim, const localize::ObserveReport
 			});
 			frames[bin]++;
 			sighted[bin] += found;
-			if (bin + 1 < bins.size()) continue;
-			fullPerCell.push_back(cov.pointsPerCell);
-			if (found) continue;
+			if (bin + 1 == bins.size()) fullPerCell.push_back(cov.pointsPerCell);
+			if (found || bin == 0) continue;  // under half covered: no tag to read
 			const CandidateReport* nearest = nullptr;
 			double best = 0.5 * truth.size;
 			for (const CandidateReport& c : report.perScan[k].candidates)
@@ -188,7 +188,8 @@ void printMisses(const sim::SimulationOutput& sim, const localize::ObserveReport
 				const double d = (c.center - truth.position()).norm();
 				if (d < best) best = d, nearest = &c;
 			}
-			why[nearest ? verdictName(nearest->verdict) : "not proposed"]++;
+			const std::string range = bin + 1 == bins.size() ? "100%" : (bin == 1 ? "50-90%" : "90-99%");
+			why[range + " " + (nearest ? verdictName(nearest->verdict) : "not proposed")]++;
 		}
 		std::printf("  %s:%d  cells hit", sim.truth[t].family.c_str(), sim.truth[t].id);
 		for (size_t b = 0; b < bins.size(); b++)
@@ -199,7 +200,7 @@ void printMisses(const sim::SimulationOutput& sim, const localize::ObserveReport
 		fullFrames += frames.back();
 		fullSeen += sighted.back();
 	}
-	std::printf("every cell covered: %zu tag-frames, seen in %zu; not seen:", fullFrames, fullSeen);
+	std::printf("every cell covered: %zu tag-frames, seen in %zu; at least half covered, not seen:", fullFrames, fullSeen);
 	for (const auto& [name, n] : allWhy) std::printf(" %s %zu", name.c_str(), n);
 	std::printf("\n");
 }
