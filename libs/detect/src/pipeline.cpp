@@ -212,6 +212,9 @@ struct Candidate
 {
 	size_t report;  // into Detections::candidates
 	OrientedBox box;
+	/** libapriltag read an AprilTag here in the scan's sensor view: the
+	 *  candidate image is read by it first, before any clutter test. */
+	bool aprilTagInView = false;
 };
 
 // Stage 3 over every cluster: a report each, and the boxes that may hold a
@@ -306,7 +309,8 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewR
 		const std::optional<Verdict> why = rejectCandidate(box, len.candidateBand, len.planeNoise, cf);
 		rep.verdict = why.value_or(Verdict::Candidate);
 		reports.push_back(rep);
-		if (!why) candidates.push_back({reports.size() - 1, box});
+		const TagFamilyInfo* family = findFamily(d.family);
+		if (!why) candidates.push_back({reports.size() - 1, box, family && family->system == TagSystem::AprilTag && d.hamming >= 0});
 	}
 	return candidates;
 }
@@ -377,9 +381,10 @@ class CandidateDecoder
 	}
 
 	/** The candidate's tags and its report (`rep`, with what happened). */
-	CandidateOutcome decodeCandidate(const OrientedBox& box, CandidateReport rep, const TagDecoder& hard,
+	CandidateOutcome decodeCandidate(const Candidate& candidate, CandidateReport rep, const TagDecoder& hard,
 									 const SoftTagDecoder& soft) const
 	{
+		const OrientedBox& box = candidate.box;
 		CandidateOutcome out{{}, std::move(rep)};
 		if (decodedFamilies_.empty())
 		{
@@ -404,6 +409,13 @@ class CandidateDecoder
 			return out;
 		}
 		if (keepImages_) out.report.image = plane.gray;
+		// Where the sensor view read an AprilTag, libapriltag on the raw
+		// image first: the quad search and the look below sort clutter out,
+		// and a tag it reads here needs neither (the raw image's read with
+		// the quads would give the same tags).
+		const std::vector<Quad> noQuads;
+		if (candidate.aprilTagInView && tryReads(hard.decode(plane.gray, &noQuads), plane.gray, 1.0, plane, out))
+			return out;
 		// The raw image's quads serve the ArUco decode of every variant and
 		// the soft decoder: they already hold the Otsu dark-blob outlines,
 		// so searching the binarised and half-size variants again found the
@@ -582,7 +594,7 @@ std::vector<TagDetection> decodeCandidates(const CandidateDecoder& decoder, cons
 		for (size_t k = b; k < e; k++)
 		{
 			CandidateReport& rep = reports[candidates[k].report];
-			CandidateOutcome o = decoder.decodeCandidate(candidates[k].box, std::move(rep), decoders.hard, decoders.soft);
+			CandidateOutcome o = decoder.decodeCandidate(candidates[k], std::move(rep), decoders.hard, decoders.soft);
 			rep = std::move(o.report);
 			perCandidate[k] = std::move(o.tags);
 			progress(++finished, candidates.size());
