@@ -310,7 +310,8 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewR
 		rep.verdict = why.value_or(Verdict::Candidate);
 		reports.push_back(rep);
 		const TagFamilyInfo* family = findFamily(d.family);
-		if (!why) candidates.push_back({reports.size() - 1, box, family && family->system == TagSystem::AprilTag && d.hamming >= 0});
+		const bool aprilTag = family && family->system == TagSystem::AprilTag && d.hamming >= 0;  // not a soft read
+		if (!why) candidates.push_back({reports.size() - 1, box, aprilTag});
 	}
 	return candidates;
 }
@@ -411,8 +412,8 @@ class CandidateDecoder
 		if (keepImages_) out.report.image = plane.gray;
 		// Where the sensor view read an AprilTag, libapriltag on the raw
 		// image first: the quad search and the look below sort clutter out,
-		// and a tag it reads here needs neither (the raw image's read with
-		// the quads would give the same tags).
+		// and a tag it reads here needs neither (the raw image's decode with
+		// the quads adds only ArUco reads of them).
 		const std::vector<Quad> noQuads;
 		if (candidate.aprilTagInView && tryReads(hard.decode(plane.gray, &noQuads), plane.gray, 1.0, plane, out))
 			return out;
