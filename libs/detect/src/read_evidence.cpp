@@ -19,6 +19,7 @@ struct CellRoles
 {
 	std::vector<uint8_t> role;  // 0 code, 1 fixed black, 2 fixed white
 	int codeBits = 0;
+	int blackCells = 0, whiteCells = 0;  // fixed: the border ring's, the quiet zone's
 	int cells = 0, borderStart = 0, borderCells = 0;  // the grid, as TagBitmap's
 
 	bool sameLayout(const CellRoles& o) const
@@ -50,6 +51,8 @@ const CellRoles& rolesOf(const std::string& family)
 	{
 		slot->role[k] = varies[k] ? 0 : (first.pixels[k] ? 2 : 1);
 		slot->codeBits += varies[k];
+		slot->blackCells += slot->role[k] == 1;
+		slot->whiteCells += slot->role[k] == 2;
 	}
 	return *slot;
 }
@@ -288,30 +291,37 @@ CodeDistances codeDistances(const std::vector<float>& cells, const std::string& 
 	return d;
 }
 
-ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
-						const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+namespace
 {
-	const TagBitmap bm = renderTagBitmap(read.family, read.id);
-	// Corners are in vertex order, so the samples come out upright.
-	std::vector<float> cells = sampleCells(gray8, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
+// A read's cells sampled inside its corners (in vertex order, so upright),
+// from every pixel or from the `measured` ones only, and judged.
+ReadEvidence judgeSampledRead(const cv::Mat& gray8, const cv::Mat* measured, const DecodedTag2D& read,
+							  int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	const CellRoles& grid = rolesOf(read.family);
+	const int first = grid.borderStart, last = grid.borderStart + grid.borderCells;
+	std::vector<float> cells = measured ? sampleMeasuredCells(gray8, *measured, read.corners, grid.cells, first, last)
+										: sampleCells(gray8, read.corners, grid.cells, first, last);
 	ReadEvidence e = judgeCells(cells, read.family, read.id, read.hamming, orientations, searched, p);
 	e.cells = std::move(cells);
 	return e;
+}
+}  // namespace
+
+ReadEvidence assessRead(const cv::Mat& gray8, const DecodedTag2D& read, int orientations,
+						const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+{
+	return judgeSampledRead(gray8, nullptr, read, orientations, searched, p);
 }
 
 ReadEvidence assessMeasuredRead(const cv::Mat& gray8, const cv::Mat& measured, const DecodedTag2D& read,
 								int orientations, const std::vector<std::string>& searched, const ReadEvidenceParams& p)
 {
-	const TagBitmap bm = renderTagBitmap(read.family, read.id);
-	std::vector<float> cells =
-		sampleMeasuredCells(gray8, measured, read.corners, bm.cells, bm.borderStart, bm.borderStart + bm.borderCells);
-	ReadEvidence e = judgeCells(cells, read.family, read.id, read.hamming, orientations, searched, p);
-	e.cells = std::move(cells);
+	ReadEvidence e = judgeSampledRead(gray8, &measured, read, orientations, searched, p);
 	if (e.rejection || e.cells.empty()) return e;
 	const CellRoles& roles = rolesOf(read.family);
-	const auto total = [&](uint8_t role) { return static_cast<int>(std::count(roles.role.begin(), roles.role.end(), role)); };
-	if (e.borderCells < p.minMeasuredFrame * total(1)) e.rejection = Verdict::NoBorder;
-	else if (e.quietCells < p.minMeasuredFrame * total(2)) e.rejection = Verdict::NoQuietZone;
+	if (e.borderCells < p.minMeasuredFrame * roles.blackCells) e.rejection = Verdict::NoBorder;
+	else if (e.quietCells < p.minMeasuredFrame * roles.whiteCells) e.rejection = Verdict::NoQuietZone;
 	return e;
 }
 

@@ -211,15 +211,13 @@ std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std
 			if (static_cast<double>(ni - erased) < params_.minMeasuredFraction * static_cast<double>(ni)) continue;
 			const BestCodes b = erased == 0 ? correlateAll(fc, sample) : correlateMeasured(fc, sample);
 			if (b.bestId < 0 || b.best < params_.minCorrelation || b.best - b.second < params_.minGap) continue;
-			const double best = b.best;
-			const int bestId = b.bestId, bestOrder = b.bestOrder;
 			DecodedTag2D d;
-			d.family = reportedFamily(requested_, family, bestId);
+			d.family = reportedFamily(requested_, family, b.bestId);
 			if (d.family.empty()) continue;
-			d.id = bestId;
-			d.mirrored = bestOrder >= 4;
-			d.corners = orderedCorners(q, bestOrder);
-			d.margin = 100 * best;
+			d.id = b.bestId;
+			d.mirrored = b.bestOrder >= 4;
+			d.corners = orderedCorners(q, b.bestOrder);
+			d.margin = 100 * b.best;
 			d.hamming = -1;  // not a bit decode
 			out.push_back(d);
 		}
