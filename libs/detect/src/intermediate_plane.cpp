@@ -10,6 +10,14 @@ namespace tagmap
 {
 namespace
 {
+// A pixel is scanned when a point lies within one splat sigma of it (that
+// point's weight there is at least exp(-1/2)). Not where the summed splats
+// reach 5 % (`known`, 2 sigma and more along dense lines): in a gap between
+// sparse scan lines (a Livox rosette) that paints the gap with the colour
+// of the line beside it, and a tag's border ring in the gap reads as its
+// quiet zone.
+const float kScannedWeight = static_cast<float>(std::exp(-0.5));
+
 /** A Gaussian blur of sigma `s` pixels. Wide blurs run on a copy shrunk so
  *  that sigma is ~2 pixels there, then are enlarged back: a hole-filling
  *  blur of sigma 64 would otherwise cost a 385-tap filter per pixel (it was
@@ -151,6 +159,7 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	// Gaussian splatting: each point spreads its intensity over nearby
 	// pixels; the image is the weighted mean (normalised convolution).
 	cv::Mat wsum(H, W, CV_32F, cv::Scalar(0)), isum(H, W, CV_32F, cv::Scalar(0));
+	out.measured = cv::Mat(H, W, CV_8U, cv::Scalar(0));
 	const double sigmaPx = std::max(0.5, p.splatSpacings * out.localSpacing / fr.pixel);
 	const int rad = static_cast<int>(std::ceil(2 * sigmaPx));
 	const double inv2s2 = 1.0 / (2 * sigmaPx * sigmaPx);
@@ -178,11 +187,13 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 			const double wy = std::exp(-dy * dy * inv2s2);
 			float* ws = wsum.ptr<float>(y);
 			float* iS = isum.ptr<float>(y);
+			uint8_t* scanned = out.measured.ptr<uint8_t>(y);
 			for (int x = x0; x <= x1; x++)
 			{
 				const float w = static_cast<float>(wx[static_cast<size_t>(x - x0)] * wy);
 				ws[x] += w;
 				iS[x] += w * I;
+				if (w >= kScannedWeight) scanned[x] = 255;
 			}
 		}
 	}
@@ -190,7 +201,6 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	// versions of the same normalised convolution.
 	cv::Mat img, known;
 	normalisedMean(wsum, isum, 1e-6f, 0.05f, img, known);
-	out.measured = known.clone();
 	fillHoles(wsum, isum, 2 * sigmaPx, std::max(W, H), img, known);
 
 	out.gray = contrastNormalised(img, std::move(vals), known);

@@ -53,8 +53,9 @@ struct PlaneImage
 {
 	PlaneFrame frame;
 	cv::Mat gray;  // CV_8UC1, contrast-normalised (2nd..98th percentile)
-	/** CV_8UC1, 255 where a point's splat reaches (before hole filling):
-	 *  what was scanned; the rest of `gray` is interpolated. */
+	/** CV_8UC1, 255 within one splat sigma of a point (before hole
+	 *  filling): what was scanned; the rest of `gray` is interpolated from
+	 *  points further away. */
 	cv::Mat measured;
 	std::vector<uint32_t> inliers;  // map indices of the points on the plane
 	double planeRms = 0;  // residual RMS of the plane fit, metres
