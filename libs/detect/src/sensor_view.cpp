@@ -24,11 +24,12 @@ struct Seam
 	bool fullCircle = true;
 };
 
-Seam findSeam(const std::vector<double>& az, double overlap)
+Seam findSeam(const std::vector<Eigen::Vector2d>& ae, double overlap)
 {
 	constexpr int kBins = 360;
 	std::vector<char> used(kBins, 0);
-	for (double a : az) used[std::clamp(static_cast<int>((a + kPi) / (2 * kPi) * kBins), 0, kBins - 1)] = 1;
+	for (const Eigen::Vector2d& a : ae)
+		used[std::clamp(static_cast<int>((a.x() + kPi) / (2 * kPi) * kBins), 0, kBins - 1)] = 1;
 	int bestStart = -1, bestLength = 0;
 	for (int s = 0; s < kBins; s++)
 	{
@@ -99,10 +100,8 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 	// below the seam once the seam is known.
 	std::vector<uint32_t> valid;
 	std::vector<Eigen::Vector2d> ae;
-	std::vector<double> azimuths;
 	valid.reserve(n);
 	ae.reserve(n);
-	azimuths.reserve(n);
 	for (size_t i = 0; i < n; i++)
 	{
 		// hypotf's own arithmetic (the float inputs' squares summed in
@@ -111,11 +110,10 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 		if (!(h > 0 || zs[i] != 0) || !std::isfinite(h) || !std::isfinite(zs[i]) || !std::isfinite(is[i])) continue;
 		valid.push_back(static_cast<uint32_t>(i));
 		ae.emplace_back(std::atan2(ys[i], xs[i]), std::atan2(zs[i], h));
-		azimuths.push_back(ae.back().x());
 	}
 	if (valid.size() < 16) return view;
 	const double overlap = p.seamOverlapDeg * kPi / 180;
-	const Seam seam = findSeam(azimuths, overlap);
+	const Seam seam = findSeam(ae, overlap);
 	Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
 	for (Eigen::Vector2d& a : ae)
 	{
