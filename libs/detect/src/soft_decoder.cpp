@@ -16,7 +16,10 @@ struct SoftTagDecoder::FamilyCodes
 	int cells = 0, borderStart = 0, borderCells = 0;
 	std::vector<int> informative;  // cells whose colour differs between codes
 	std::vector<float> unit;  // idCount x informative.size()
-	std::vector<uint8_t> white;  // idCount x informative.size(): the codes' cells, 1 white
+	/** idCount x whiteBytes: the codes' informative cells packed 8 to a
+	 *  byte, bit i of byte b set when cell 8b + i is white. */
+	std::vector<uint8_t> white;
+	size_t whiteBytes = 0;
 	std::vector<uint8_t> borderMask;  // 1: a border-ring cell (black), 2: a quiet-zone cell (white)
 	int idCount = 0;
 };
@@ -77,10 +80,13 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 		if (whiteCount[i] != 0 && whiteCount[i] != fc.idCount) fc.informative.push_back(static_cast<int>(i));
 	const size_t n = fc.informative.size();
 	fc.unit.resize(n * static_cast<size_t>(fc.idCount));
+	fc.whiteBytes = (n + 7) / 8;
+	fc.white.assign(fc.whiteBytes * static_cast<size_t>(fc.idCount), 0);
 	for (int id = 0; id < fc.idCount; id++)
 	{
 		for (size_t j = 0; j < n; j++) fc.unit[id * n + j] = bitmaps[id].pixels[fc.informative[j]] / 255.0f;
-		for (size_t j = 0; j < n; j++) fc.white.push_back(bitmaps[id].pixels[fc.informative[j]] != 0);
+		for (size_t j = 0; j < n; j++)
+			if (bitmaps[id].pixels[fc.informative[j]] != 0) fc.white[id * fc.whiteBytes + j / 8] |= 1u << (j % 8);
 		normalise(fc.unit, id * n, n);
 	}
 	// Cells every code shares: the border ring is black, the quiet zone white.
@@ -142,37 +148,54 @@ SoftTagDecoder::BestCodes SoftTagDecoder::correlateMeasured(const FamilyCodes& f
 	// Over the measured cells S, with the data centred there (d), a code's
 	// 0/1 cells c correlate as sum_S c d / sqrt((w - w^2 / |S|) sum_S d^2),
 	// w its white cells in S: its mean over S drops out of the numerator.
-	const size_t ni = fc.informative.size();
+	// Both sums come from tables over the code's packed bytes: for each
+	// byte, the sum of d over every subset of its 8 cells (0 where not
+	// measured), so a code costs a lookup per 8 cells, not a branch per cell.
+	const size_t ni = fc.informative.size(), nb = fc.whiteBytes;
 	BestCodes b;
-	std::vector<size_t> at;
-	std::vector<double> centred;
+	std::vector<double> d(nb * 8, 0.0), subsetSum(nb * 256);
+	std::vector<uint8_t> measured(nb);
 	for (int order = 0; order < 8; order++)
 	{
 		const std::vector<int>& perm = cellPermutation(fc.cells, order);
-		at.clear();
-		centred.clear();
+		std::fill(d.begin(), d.end(), 0.0);
+		std::fill(measured.begin(), measured.end(), 0);
 		double mean = 0;
+		int count = 0;
 		for (size_t j = 0; j < ni; j++)
 		{
 			const float v = sample[static_cast<size_t>(perm[fc.informative[j]])];
 			if (std::isnan(v)) continue;
-			at.push_back(j);
-			centred.push_back(v);
+			d[j] = v;
+			measured[j / 8] |= static_cast<uint8_t>(1u << (j % 8));
 			mean += v;
+			count++;
 		}
-		const double n = static_cast<double>(at.size());
+		const double n = count;
 		if (n < 2) continue;
 		mean /= n;
 		double ss = 0;
-		for (double& d : centred) d -= mean, ss += d * d;
+		for (size_t j = 0; j < ni; j++)
+			if (measured[j / 8] >> (j % 8) & 1) d[j] -= mean, ss += d[j] * d[j];
 		if (!(ss > 0)) continue;
+		for (size_t byte = 0; byte < nb; byte++)
+		{
+			double* sums = &subsetSum[byte * 256];
+			sums[0] = 0;
+			for (unsigned m = 1; m < 256; m++)
+				sums[m] = sums[m & (m - 1)] + d[byte * 8 + static_cast<unsigned>(__builtin_ctz(m))];
+		}
 		for (int id = 0; id < fc.idCount; id++)
 		{
-			const uint8_t* white = &fc.white[id * ni];
-			double dot = 0, w = 0;
-			for (size_t k = 0; k < at.size(); k++)
-				if (white[at[k]]) dot += centred[k], w += 1;
-			const double spread = w - w * w / n;
+			const uint8_t* white = &fc.white[id * nb];
+			double dot = 0;
+			int w = 0;
+			for (size_t byte = 0; byte < nb; byte++)
+			{
+				dot += subsetSum[byte * 256 + white[byte]];
+				w += __builtin_popcount(static_cast<unsigned>(white[byte] & measured[byte]));
+			}
+			const double spread = w - static_cast<double>(w) * w / n;
 			b.offer(spread > 0 ? dot / std::sqrt(spread * ss) : 0.0, id, order);
 		}
 	}
