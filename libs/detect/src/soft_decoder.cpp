@@ -9,13 +9,11 @@
 
 namespace tagmap
 {
-// Every code of a family as a zero-mean, unit-norm vector over its cells,
-// so a dot product with a normalised sample is their Pearson correlation.
+// Every code of a family over the cells that tell codes apart, packed.
 struct SoftTagDecoder::FamilyCodes
 {
 	int cells = 0, borderStart = 0, borderCells = 0;
 	std::vector<int> informative;  // cells whose colour differs between codes
-	std::vector<float> unit;  // idCount x informative.size()
 	/** idCount x whiteBytes: the codes' informative cells packed 8 to a
 	 *  byte, bit i of byte b set when cell 8b + i is white. */
 	std::vector<uint8_t> white;
@@ -23,20 +21,6 @@ struct SoftTagDecoder::FamilyCodes
 	std::vector<uint8_t> borderMask;  // 1: a border-ring cell (black), 2: a quiet-zone cell (white)
 	int idCount = 0;
 };
-
-namespace
-{
-void normalise(std::vector<float>& v, size_t begin, size_t n)
-{
-	double mean = 0, ss = 0;
-	for (size_t i = 0; i < n; i++) mean += v[begin + i];
-	mean /= static_cast<double>(n);
-	for (size_t i = 0; i < n; i++) ss += (v[begin + i] - mean) * (v[begin + i] - mean);
-	const double inv = ss > 0 ? 1.0 / std::sqrt(ss) : 0.0;
-	for (size_t i = 0; i < n; i++) v[begin + i] = static_cast<float>((v[begin + i] - mean) * inv);
-}
-
-}  // namespace
 
 SoftTagDecoder::SoftTagDecoder(const std::vector<std::string>& families, SoftDecoderParams params)
 	: params_(params), requested_(families)
@@ -52,7 +36,7 @@ SoftTagDecoder::~SoftTagDecoder() = default;
 const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& family) const
 {
 	// One copy per process, whatever the number of decoders (threads): the
-	// largest family's table is 13 MB.
+	// largest family's table is 0.5 MB.
 	static std::mutex mutex;
 	static std::map<std::string, std::unique_ptr<FamilyCodes>> cache;
 	std::lock_guard<std::mutex> lock(mutex);
@@ -79,15 +63,12 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	for (size_t i = 0; i < all; i++)
 		if (whiteCount[i] != 0 && whiteCount[i] != fc.idCount) fc.informative.push_back(static_cast<int>(i));
 	const size_t n = fc.informative.size();
-	fc.unit.resize(n * static_cast<size_t>(fc.idCount));
 	fc.whiteBytes = (n + 7) / 8;
 	fc.white.assign(fc.whiteBytes * static_cast<size_t>(fc.idCount), 0);
 	for (int id = 0; id < fc.idCount; id++)
 	{
-		for (size_t j = 0; j < n; j++) fc.unit[id * n + j] = bitmaps[id].pixels[fc.informative[j]] / 255.0f;
 		for (size_t j = 0; j < n; j++)
 			if (bitmaps[id].pixels[fc.informative[j]] != 0) fc.white[id * fc.whiteBytes + j / 8] |= 1u << (j % 8);
-		normalise(fc.unit, id * n, n);
 	}
 	// Cells every code shares: the border ring is black, the quiet zone white.
 	fc.borderMask.assign(all, 0);
@@ -122,30 +103,10 @@ struct SoftTagDecoder::BestCodes
 	}
 };
 
-SoftTagDecoder::BestCodes SoftTagDecoder::correlateAll(const FamilyCodes& fc, const std::vector<float>& sample)
+SoftTagDecoder::BestCodes SoftTagDecoder::correlate(const FamilyCodes& fc, const std::vector<float>& sample)
 {
-	const size_t ni = fc.informative.size();
-	std::vector<float> data(ni);
-	BestCodes b;
-	for (int order = 0; order < 8; order++)
-	{
-		const std::vector<int>& perm = cellPermutation(fc.cells, order);
-		for (size_t j = 0; j < ni; j++) data[j] = sample[static_cast<size_t>(perm[fc.informative[j]])];
-		normalise(data, 0, ni);
-		for (int id = 0; id < fc.idCount; id++)
-		{
-			const float* u = &fc.unit[id * ni];
-			double dot = 0;
-			for (size_t j = 0; j < ni; j++) dot += u[j] * data[j];
-			b.offer(dot, id, order);
-		}
-	}
-	return b;
-}
-
-SoftTagDecoder::BestCodes SoftTagDecoder::correlateMeasured(const FamilyCodes& fc, const std::vector<float>& sample)
-{
-	// Over the measured cells S, with the data centred there (d), a code's
+	// Pearson correlation over the measured cells S (all of them when
+	// nothing is erased). With the data centred there (d), a code's
 	// 0/1 cells c correlate as sum_S c d / sqrt((w - w^2 / |S|) sum_S d^2),
 	// w its white cells in S: its mean over S drops out of the numerator.
 	// Both sums come from tables over the code's packed bytes: for each
@@ -232,7 +193,7 @@ std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std
 			size_t erased = 0;
 			for (int k : fc.informative) erased += std::isnan(sample[static_cast<size_t>(k)]);
 			if (static_cast<double>(ni - erased) < params_.minMeasuredFraction * static_cast<double>(ni)) continue;
-			const BestCodes b = erased == 0 ? correlateAll(fc, sample) : correlateMeasured(fc, sample);
+			const BestCodes b = correlate(fc, sample);
 			if (b.bestId < 0 || b.best < params_.minCorrelation || b.best - b.second < params_.minGap) continue;
 			DecodedTag2D d;
 			d.family = reportedFamily(requested_, family, b.bestId);

@@ -55,10 +55,9 @@ class SoftTagDecoder
 	std::vector<std::string> families_;  // searched: nested ArUco collapsed
 	const FamilyCodes& codesOf(const std::string& family) const;
 	struct BestCodes;
-	/** The best and runner-up code over all 8 orientations of `sample`;
-	 *  with erased (NaN) cells, each compared on the measured cells only. */
-	static BestCodes correlateAll(const FamilyCodes& fc, const std::vector<float>& sample);
-	static BestCodes correlateMeasured(const FamilyCodes& fc, const std::vector<float>& sample);
+	/** The best and runner-up code over all 8 orientations of `sample`,
+	 *  each compared on the measured cells only (erased cells are NaN). */
+	static BestCodes correlate(const FamilyCodes& fc, const std::vector<float>& sample);
 };
 
 }  // namespace tagmap
