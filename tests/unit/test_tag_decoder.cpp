@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 #include <opencv2/core.hpp>
 #include <opencv2/core/base.hpp>
 
@@ -119,6 +121,50 @@ TEST(SoftTagDecoder, ReadsATagPartlyInAScanGapOnItsScannedCells)
 	EXPECT_FALSE(e.rejection) << verdictName(*e.rejection);
 	EXPECT_GT(e.erasures, 0);
 	EXPECT_TRUE(assessRead(img, found[0], 8, {"tag36h11"}, {}).rejection);
+}
+
+TEST(SoftTagDecoder, MarginIsThePearsonCorrelationOnTheScannedCells)
+{
+	// A noisy tag partly in a gap: the read's margin is 100 x the Pearson
+	// correlation of its code with the scanned cells that differ between
+	// codes, computed here the plain way.
+	std::array<Eigen::Vector2d, 4> corners;
+	cv::Mat img = drawTag("tag36h11", 5, 12, 30, corners);
+	for (int r = 0; r < img.rows; r++)
+		for (int c = 0; c < img.cols; c++)
+		{
+			const int cell = (r / 12) * 5 + (c / 12) * 3;  // a grey offset per cell, as sparse cells have
+			img.at<uint8_t>(r, c) = cv::saturate_cast<uint8_t>(60 + img.at<uint8_t>(r, c) / 2 + (cell % 9 - 4) * 15);
+		}
+	const cv::Mat measured = eraseRightPart(img, corners, 0.3);
+	const std::vector<DecodedTag2D> found = SoftTagDecoder({"tag36h11"}).decode(img, {corners}, &measured);
+	ASSERT_EQ(found.size(), 1u);
+	ASSERT_EQ(found[0].id, 5);
+
+	const TagBitmap own = renderTagBitmap("tag36h11", 5);
+	std::vector<int> whiteCount(own.pixels.size(), 0);
+	const int codes = findFamily("tag36h11")->idCount;
+	for (int id = 0; id < codes; id++)
+	{
+		const TagBitmap bm = renderTagBitmap("tag36h11", id);
+		for (size_t k = 0; k < bm.pixels.size(); k++) whiteCount[k] += bm.pixels[k] != 0;
+	}
+	const std::vector<float> cells = sampleMeasuredCells(img, measured, found[0].corners, own.cells, own.borderStart,
+														 own.borderStart + own.borderCells);
+	std::vector<double> x, y;
+	for (size_t k = 0; k < cells.size(); k++)
+		if (whiteCount[k] != 0 && whiteCount[k] != codes && !std::isnan(cells[k]))
+			x.push_back(cells[k]), y.push_back(own.pixels[k] != 0);
+	ASSERT_GT(x.size(), 18u);
+	ASSERT_LT(x.size(), 36u);  // some are erased
+	const auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / v.size(); };
+	const double mx = mean(x), my = mean(y);
+	double sxy = 0, sxx = 0, syy = 0;
+	for (size_t k = 0; k < x.size(); k++)
+		sxy += (x[k] - mx) * (y[k] - my), sxx += (x[k] - mx) * (x[k] - mx), syy += (y[k] - my) * (y[k] - my);
+	const double r = sxy / std::sqrt(sxx * syy);
+	EXPECT_LT(r, 0.99);  // the noise shows
+	EXPECT_NEAR(found[0].margin, 100 * r, 1e-6);
 }
 
 TEST(SoftTagDecoder, MostlyUnscannedTagIsNotRead)
