@@ -187,14 +187,18 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 			const double wy = std::exp(-dy * dy * inv2s2);
 			float* ws = wsum.ptr<float>(y);
 			float* iS = isum.ptr<float>(y);
-			uint8_t* scanned = out.measured.ptr<uint8_t>(y);
 			for (int x = x0; x <= x1; x++)
 			{
 				const float w = static_cast<float>(wx[static_cast<size_t>(x - x0)] * wy);
 				ws[x] += w;
 				iS[x] += w * I;
-				if (w >= kScannedWeight) scanned[x] = 255;
 			}
+			// A pixel's weight is at most its row's (wx <= 1): only rows
+			// within a sigma of the point can hold a scanned pixel.
+			if (static_cast<float>(wy) < kScannedWeight) continue;
+			uint8_t* scanned = out.measured.ptr<uint8_t>(y);
+			for (int x = x0; x <= x1; x++)
+				if (static_cast<float>(wx[static_cast<size_t>(x - x0)] * wy) >= kScannedWeight) scanned[x] = 255;
 		}
 	}
 	// Holes (occlusion shadows, sparse scan lines): fill from ever blurrier
