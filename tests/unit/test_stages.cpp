@@ -458,27 +458,56 @@ TEST(PatternRefinement, SquareAtTheEdgeOfItsPointsIsRejectedCleanly)
 // and the fit stop at its start is a real scan's, 0.35 deg in-plane on
 // accuracy_2m_s00 of the benchmark maps; this synthetic wall does not
 // reproduce it.)
-TEST(PatternRefinement, ReachesTheSameFitFromDifferentStarts)
+namespace
 {
-	tagmap::testing::WallScene s;
-	s.spacing = 0.004;
-	s.intensityNoise = 0.05;
+// A tag on a wall sampled every 4 mm, every point on its plane, and the
+// tag's pose moved in its plane from the truth.
+struct RefinementWall
+{
 	TagDetection truth;
-	const auto map = tagmap::testing::makeWall(s, truth);
+	mrpt::maps::CPointsMapXYZI map;
 	PlaneImage plane;
-	plane.localSpacing = s.spacing;
-	for (uint32_t k = 0; k < map.size(); k++) plane.inliers.push_back(k);
-	auto refinedFrom = [&](double angleDeg, double dx, double dy) {
+
+	RefinementWall()
+	{
+		tagmap::testing::WallScene s;
+		s.spacing = 0.004;
+		s.intensityNoise = 0.05;
+		map = tagmap::testing::makeWall(s, truth);
+		plane.localSpacing = s.spacing;
+		for (uint32_t k = 0; k < map.size(); k++) plane.inliers.push_back(k);
+	}
+
+	TagDetection movedBy(double angleDeg, double dx, double dy) const
+	{
 		TagDetection t = truth;
 		Eigen::Isometry3d off = Eigen::Isometry3d::Identity();
 		off.linear() = Eigen::AngleAxisd(angleDeg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 		off.translation() = Eigen::Vector3d(dx, dy, 0);
 		t.pose = truth.pose * off;
 		t.corners = cornersFromPose(t.pose, t.size);
+		return t;
+	}
+
+	using Fit = bool (*)(TagDetection&, const PlaneImage&, const float*, const float*, const float*, const float*,
+						 const PatternRefinementParams&);
+	bool fit(Fit f, TagDetection& t) const
+	{
 		PatternRefinementParams p;
 		p.estimateSize = false;
-		EXPECT_TRUE(refineWithPattern(t, plane, map.getPointsBufferRef_x().data(), map.getPointsBufferRef_y().data(),
-									  map.getPointsBufferRef_z().data(), map.getPointsBufferRef_intensity().data(), p));
+		return f(t, plane, map.getPointsBufferRef_x().data(), map.getPointsBufferRef_y().data(),
+				 map.getPointsBufferRef_z().data(), map.getPointsBufferRef_intensity().data(), p);
+	}
+};
+}  // namespace
+
+TEST(PatternRefinement, ReachesTheSameFitFromDifferentStarts)
+{
+	const RefinementWall wall;
+	const TagDetection& truth = wall.truth;
+	auto refinedFrom = [&](double angleDeg, double dx, double dy) {
+		TagDetection t = wall.movedBy(angleDeg, dx, dy);
+		EXPECT_TRUE(wall.fit(refineWithPattern, t));
 		return t.pose;
 	};
 	const Eigen::Isometry3d a = refinedFrom(0.4, 0.002, -0.001), b = refinedFrom(-0.3, -0.001, 0.0015);
@@ -490,6 +519,48 @@ TEST(PatternRefinement, ReachesTheSameFitFromDifferentStarts)
 	EXPECT_LT(apartDeg, 0.02);
 	EXPECT_LT(d.translation().norm(), 0.0003);
 	EXPECT_LT(offDeg, 0.3);
+}
+
+// The frame every code of a family prints alike: fixed cells as every
+// bitmap has them, grey exactly where the codes differ.
+TEST(PatternRefinement, FrameBitmapIsWhatEveryCodePrintsAlike)
+{
+	const TagBitmap frame = frameBitmap("tag36h11");
+	const TagBitmap a = renderTagBitmap("tag36h11", 0), b = renderTagBitmap("tag36h11", 300);
+	ASSERT_EQ(frame.pixels.size(), a.pixels.size());
+	int grey = 0;
+	for (size_t k = 0; k < frame.pixels.size(); k++)
+	{
+		if (frame.pixels[k] == 128) grey++;
+		else
+		{
+			EXPECT_EQ(frame.pixels[k], a.pixels[k]);
+			EXPECT_EQ(frame.pixels[k], b.pixels[k]);
+		}
+	}
+	EXPECT_EQ(grey, 36);  // tag36h11's code bits
+}
+
+// A read's grid placed again by its family's frame: from a start a third
+// of a cell and 2 deg off it returns near the truth, and to the same place
+// whichever code the read named (the placement cannot favour the code that
+// is then judged on it).
+TEST(PatternRefinement, FramePlacementDoesNotDependOnTheCodeRead)
+{
+	const RefinementWall wall;
+	const TagDetection& truth = wall.truth;
+	const double cell = truth.size / renderTagBitmap(truth.family, truth.id).borderCells;
+	auto placedAs = [&](int id) {
+		TagDetection t = wall.movedBy(2, 0.33 * cell, -0.25 * cell);
+		t.id = id;
+		EXPECT_TRUE(wall.fit(placeByFrame, t));
+		return t.pose;
+	};
+	const Eigen::Isometry3d own = placedAs(truth.id), other = placedAs(truth.id + 1);
+	EXPECT_TRUE(own.isApprox(other, 0)) << "the placement depends on the code read";
+	const Eigen::Isometry3d d = truth.pose.inverse() * own;
+	EXPECT_LT(d.translation().norm(), 0.05 * cell);
+	EXPECT_LT(Eigen::AngleAxisd(d.linear()).angle() * 180 / M_PI, 0.3);
 }
 
 namespace

@@ -453,14 +453,23 @@ class CandidateDecoder
 	{
 		for (DecodedTag2D& d : reads)
 		{
-			ReadEvidence ev = assessRead(image, d, readOrientations_, searched_, p_.evidence);
-			// Cells in a gap of the scan hold the hole filling's guesses: a
-			// read they fail is judged again on the scanned cells alone.
-			if (ev.rejection && scale == 1)
+			ReadEvidence ev = judgeRead(image, d, scale, plane, p_.evidence);
+			// A quad traced on a noisy or blurred border can sit a fraction
+			// of a cell off, and the cells along its edges then read their
+			// neighbours. A read rejected as by chance is judged again on
+			// the grid its family's frame places (placeByFrame(): no code
+			// favoured), at half the budget: the two placements together
+			// stay within one and a half budgets.
+			if (ev.rejection == Verdict::ByChance && scale == 1)
 			{
-				ReadEvidence scanned =
-					assessMeasuredRead(image, plane.measured, d, readOrientations_, searched_, p_.evidence);
-				if (!scanned.rejection) ev = std::move(scanned);
+				DecodedTag2D placed = d;
+				ReadEvidenceParams half = p_.evidence;
+				half.chanceBudget /= 2;
+				if (gridPlacedByFrame(d, plane, placed))
+				{
+					ReadEvidence again = judgeRead(image, placed, scale, plane, half);
+					if (!again.rejection) d = std::move(placed), ev = std::move(again);
+				}
 			}
 			for (auto& c : d.corners) c *= scale;
 			TagDetection t;
@@ -480,6 +489,35 @@ class CandidateDecoder
 			out.tags.push_back(std::move(t));
 		}
 		return !out.tags.empty();
+	}
+
+	// The evidence of a read on `image`. Cells in a gap of the scan hold the
+	// hole filling's guesses: a read they fail is judged again on the
+	// scanned cells alone.
+	ReadEvidence judgeRead(const cv::Mat& image, const DecodedTag2D& d, double scale, const PlaneImage& plane,
+						   const ReadEvidenceParams& ep) const
+	{
+		ReadEvidence ev = assessRead(image, d, readOrientations_, searched_, ep);
+		if (ev.rejection && scale == 1)
+		{
+			ReadEvidence scanned = assessMeasuredRead(image, plane.measured, d, readOrientations_, searched_, ep);
+			if (!scanned.rejection) ev = std::move(scanned);
+		}
+		return ev;
+	}
+
+	// The read's quad moved to where its family's frame fits the points
+	// best (on the plane image `d` was read from); false when too few
+	// points lie on its grid.
+	bool gridPlacedByFrame(const DecodedTag2D& d, const PlaneImage& plane, DecodedTag2D& placed) const
+	{
+		if (!sizeAsked(measuredTagSize(d, plane))) return false;
+		TagDetection t = solveTagPose(d, plane, p_.tagSize);
+		PatternRefinementParams rp = p_.refinement;
+		rp.estimateSize = p_.tagSize <= 0;
+		if (!placeByFrame(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return false;
+		for (int k = 0; k < 4; k++) placed.corners[k] = plane.frame.toImage(t.corners[k]);
+		return true;
 	}
 
 	// A read in 3D: pose, plane refit, the tag's own bitmap fitted to its

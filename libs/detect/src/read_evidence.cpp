@@ -184,6 +184,18 @@ bool quadCanShowACode(const cv::Mat& gray8, const Quad& q, const std::vector<std
 	return false;
 }
 
+TagBitmap frameBitmap(const std::string& family)
+{
+	const CellRoles& roles = rolesOf(family);
+	TagBitmap bm;
+	bm.cells = roles.cells;
+	bm.borderStart = roles.borderStart;
+	bm.borderCells = roles.borderCells;
+	bm.pixels.resize(roles.role.size());
+	for (size_t k = 0; k < roles.role.size(); k++) bm.pixels[k] = roles.role[k] == 1 ? 0 : (roles.role[k] == 2 ? 255 : 128);
+	return bm;
+}
+
 double chanceMatchProbability(int codes, int n, int wrong, int orientations)
 {
 	// sum_{k<=wrong} C(n,k) / 2^n, in logs: n reaches 52 bits.

@@ -27,4 +27,14 @@ struct PatternRefinementParams
 bool refineWithPattern(TagDetection& t, const PlaneImage& plane, const float* xs, const float* ys, const float* zs,
 					   const float* is, const PatternRefinementParams& p);
 
+/** The same fit with the family's frame as the pattern (frameBitmap():
+ *  the black border ring and the white quiet zone, the code cells grey),
+ *  so the tag's grid is placed by what every code of its family prints
+ *  alike. A read's cells sampled on that grid are as fair a test of any
+ *  code as on the decoder's own quad: the placement cannot have favoured
+ *  the code read. Updates t as refineWithPattern() does (t.patternFit is
+ *  the frame's fit); false with too few points on the grid. */
+bool placeByFrame(TagDetection& t, const PlaneImage& plane, const float* xs, const float* ys, const float* zs,
+				  const float* is, const PatternRefinementParams& p);
+
 }  // namespace tagmap

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "tagmap/tag_decoder.h"
+#include "tagmap/tag_family.h"
 #include "tagmap/tag_quads.h"
 #include "tagmap/verdict.h"
 
@@ -33,7 +34,9 @@ struct ReadEvidenceParams
 	/** Largest chance-match probability of an accepted read, summed over
 	 *  the families searched (a Bonferroni bound). With ~10^4 quads read
 	 *  in a large cluttered map this allows ~0.1 false tags per map even if
-	 *  clutter were random bits; it is far less structured than that. */
+	 *  clutter were random bits; it is far less structured than that.
+	 *  A read rejected here and judged again on the grid its family's
+	 *  frame places (pipeline.cpp, placeByFrame()) has half of it there. */
 	double chanceBudget = 1e-3;
 	/** A code cell within this fraction of the black-white contrast of the
 	 *  threshold is an erasure: it neither counts as wrong nor as evidence
@@ -131,6 +134,11 @@ int fewestCellsToRead(const std::vector<std::string>& families);
  *  count for neither. */
 bool quadCanShowACode(const cv::Mat& gray8, const Quad& q, const std::vector<std::string>& families,
 					  const ReadEvidenceParams& p);
+
+/** What every code of `family` prints alike: its grid (as
+ *  renderTagBitmap()) with the border ring black, the quiet zone white and
+ *  every code cell mid-grey (128). A grid placed by it favours no code. */
+TagBitmap frameBitmap(const std::string& family);
 
 /** Probability that a uniformly random n-bit pattern lies within `wrong`
  *  bits of one of `codes` codes in one of `orientations` orientations. */
