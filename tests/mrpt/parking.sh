@@ -12,11 +12,9 @@ rm -rf "$dir" && mkdir -p "$dir"
 
 SECONDS=0
 "$tagmap" simulate "$scene" --out "$dir" --simplemap --threads 2
-# The site's family, as a user who printed the tags gives it: searched with
-# every family, the read of tag 0 (the fast, drifted pass) has to beat a
-# chance budget split 13 ways and sits at its edge (test_scenes' Parking).
-# Beacon IDs are per printed marker (beacon_id.h), so they must still be the
-# ones the fixture's beacons rawlog (made from the ground truth) uses.
+# The site's family, as a user who printed the tags gives it. Beacon IDs are
+# per printed marker (beacon_id.h), so they must still be the ones the
+# fixture's beacons rawlog (made from the ground truth) uses.
 "$tagmap" detect "$dir/scans.simplemap" --family aruco_6x6_250 --json "$dir/parking.json" --threads 2 --quiet \
   --landmarks "$dir/parking.landmarks.gz" --tagmap "$dir/parking.tagmap" --ini "$dir/parking.ini" \
   --rawlog "$dir/parking.rawlog" --3dscene "$dir/parking.3Dscene"
@@ -25,6 +23,14 @@ SECONDS=0
 cat "$dir/parking_compare.txt"
 found=$(grep -o '"family"' "$dir/parking.json" | wc -l)
 ((found == 3)) || { echo "FAIL: $found tag(s) detected in the parking map, expected 3"; exit 1; }
+# Searched with every family, the read of tag 0 (the fast, drifted pass) on
+# its decoder's quad has 2 of 36 bits wrong, more likely by chance than a
+# budget split 13 ways allows; on the grid its frame places (pipeline.cpp,
+# placeByFrame()) it passes. Without that second placement this map gives 2.
+"$tagmap" detect "$dir/scans.simplemap" --json "$dir/parking_every_family.json" --threads 2 --quiet
+"$tagmap" compare "$dir/parking_every_family.json" "$dir/ground_truth.json" >"$dir/parking_every_family.txt" || true
+grep -q "found 3 of 3, missed 0, false 0 (wrong family/id 0, duplicate 0)" "$dir/parking_every_family.txt" ||
+  { cat "$dir/parking_every_family.txt"; echo "FAIL: every family on, expected the 3 tags and nothing else"; exit 1; }
 echo "parking: simulate + detect in ${SECONDS}s"
 
 bash "$here/rawlog_edit_info.sh" "$dir" "$plugin" parking
