@@ -377,7 +377,9 @@ class CandidateDecoder
 		  readOrientations_(readOrientations(p)),
 		  fewestPoints_(static_cast<size_t>(fewestCellsToRead(decodedFamilies))),
 		  smallestCell_(smallestReportableCell(p, decodedFamilies)),
-		  decodedFamilies_(decodedFamilies)
+		  decodedFamilies_(decodedFamilies),
+		  refinement_(refinementFor(p)),
+		  secondPlacementEvidence_(halfBudget(p.evidence))
 	{
 	}
 
@@ -461,16 +463,11 @@ class CandidateDecoder
 			// favoured), at half the budget: the two placements together
 			// stay within one and a half budgets.
 			if (ev.rejection == Verdict::ByChance && scale == 1)
-			{
-				DecodedTag2D placed = d;
-				ReadEvidenceParams half = p_.evidence;
-				half.chanceBudget /= 2;
-				if (gridPlacedByFrame(d, plane, placed))
+				if (std::optional<DecodedTag2D> placed = placedByFrame(d, plane))
 				{
-					ReadEvidence again = judgeRead(image, placed, scale, plane, half);
-					if (!again.rejection) d = std::move(placed), ev = std::move(again);
+					ReadEvidence again = judgeRead(image, *placed, scale, plane, secondPlacementEvidence_);
+					if (!again.rejection) d = std::move(*placed), ev = std::move(again);
 				}
-			}
 			for (auto& c : d.corners) c *= scale;
 			TagDetection t;
 			const Verdict v = ev.rejection ? *ev.rejection : verifyRead(d, ev, plane, t);
@@ -506,18 +503,17 @@ class CandidateDecoder
 		return ev;
 	}
 
-	// The read's quad moved to where its family's frame fits the points
-	// best (on the plane image `d` was read from); false when too few
-	// points lie on its grid.
-	bool gridPlacedByFrame(const DecodedTag2D& d, const PlaneImage& plane, DecodedTag2D& placed) const
+	// The read with its quad moved to where its family's frame fits the
+	// points best (on the plane image `d` was read from); nothing when its
+	// size is none asked for or too few points lie on its grid.
+	std::optional<DecodedTag2D> placedByFrame(const DecodedTag2D& d, const PlaneImage& plane) const
 	{
-		if (!sizeAsked(measuredTagSize(d, plane))) return false;
+		if (!sizeAsked(measuredTagSize(d, plane))) return std::nullopt;
 		TagDetection t = solveTagPose(d, plane, p_.tagSize);
-		PatternRefinementParams rp = p_.refinement;
-		rp.estimateSize = p_.tagSize <= 0;
-		if (!placeByFrame(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return false;
+		if (!placeByFrame(t, plane, m_.xs, m_.ys, m_.zs, m_.is, refinement_)) return std::nullopt;
+		DecodedTag2D placed = d;
 		for (int k = 0; k < 4; k++) placed.corners[k] = plane.frame.toImage(t.corners[k]);
-		return true;
+		return placed;
 	}
 
 	// A read in 3D: pose, plane refit, the tag's own bitmap fitted to its
@@ -531,9 +527,7 @@ class CandidateDecoder
 		if (!sizeAsked(measuredTagSize(d, plane))) return Verdict::SizeMismatch;
 		t = solveTagPose(d, plane, p_.tagSize);
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
-		PatternRefinementParams rp = p_.refinement;
-		rp.estimateSize = p_.tagSize <= 0;
-		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, rp)) return Verdict::PatternMismatch;
+		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, refinement_)) return Verdict::PatternMismatch;
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!sizeAsked(t.size)) return Verdict::SizeMismatch;  // the refined size, too, must be one asked for
 		if (!measuredCellsShowTheCode(d, ev, plane, t)) return Verdict::CodeNotInPoints;
@@ -616,6 +610,20 @@ class CandidateDecoder
 	const size_t fewestPoints_;  // fewestCellsToRead() of the families decoded
 	const double smallestCell_;  // smallestReportableCell(): the finest the images need resolve
 	const std::vector<std::string> decodedFamilies_;  // what the decoders search
+	const PatternRefinementParams refinement_;  // the size floats unless --tag-size was given
+	const ReadEvidenceParams secondPlacementEvidence_;  // half the chance budget
+
+	static PatternRefinementParams refinementFor(const PipelineParams& p)
+	{
+		PatternRefinementParams rp = p.refinement;
+		rp.estimateSize = p.tagSize <= 0;
+		return rp;
+	}
+	static ReadEvidenceParams halfBudget(ReadEvidenceParams e)
+	{
+		e.chanceBudget /= 2;
+		return e;
+	}
 };
 
 // Gather, render, decode, solve: independent per candidate, on each
