@@ -13,7 +13,7 @@
 #               with the 2 before it (--window 3). --check then asserts what it
 #               measures, not issue 18's 2 cm: PF <= 6 cm / 0.5 deg, converged within
 #               30 steps (no tag is in view before step ~17), direct <= 3 cm / 0.5 deg
-#               (measured: PF 3.1 cm / 0.16 deg, step 19; direct 1.2 cm / 0.30 deg)
+#               (measured: PF 2.1 cm / 0.10 deg, step 17; direct 1.8 cm / 0.42 deg)
 #     --biased  the robot_biased run instead: a 64-beam spinning LiDAR at 2 Hz mounted
 #               0.3 m ahead and 1.2 m up, on wheel odometry that is 2 % long and turns
 #               1 deg per metre on top of the random drift. --check asserts issue 18's
@@ -22,7 +22,7 @@
 #               --livox, 1 otherwise)
 #     --check   exit 1 unless the PF (tag poses) converged from its uniform start within
 #               10 steps and then has translation RMSE <= 0.010 m and rotation RMSE
-#               <= 0.30 deg (issue 18's targets; measured 3.8 mm / 0.02 deg), direct
+#               <= 0.30 deg (issue 18's targets; measured 3.7 mm / 0.02 deg), direct
 #               relocalization has <= 0.015 m and <= 0.20 deg (measured 5.8 mm /
 #               0.05 deg), and a second PF run (a new process, same seed) gives the
 #               same trajectory

@@ -135,11 +135,11 @@ void annealRanges(maps::TTagLikelihoodOptions& o, const PfParams& params, const 
 }
 
 /** Tag poses: the belief's spread added to every tag's std, capped. */
-void annealPoses(maps::TTagLikelihoodOptions& o, const PfParams& params, const Spread& spread)
+void annealPoses(maps::TTagLikelihoodOptions& o, const PfParams& params, const Spread& spread, bool converged)
 {
-	o.tagPoseExtraStdPosition = std::min(params.annealWidth * spread.position, params.globalPoseStdPosition);
-	o.tagPoseExtraStdRotationDeg =
-		std::min(params.annealWidth * mrpt::RAD2DEG(spread.heading), params.globalPoseStdRotationDeg);
+	const double width = converged ? params.trackingAnnealWidth : params.annealWidth;
+	o.tagPoseExtraStdPosition = std::min(width * spread.position, params.globalPoseStdPosition);
+	o.tagPoseExtraStdRotationDeg = std::min(width * mrpt::RAD2DEG(spread.heading), params.globalPoseStdRotationDeg);
 }
 
 /** No motion, a little noise: a resampled set (duplicates) spreads out
@@ -260,7 +260,7 @@ Spread updateWithPoses(mrpt::bayes::CParticleFilter& pf, mrpt::slam::CMonteCarlo
 	pdf.getMean(mean);
 	for (int pass = 0; !sf.empty() && pass < params.annealPasses; pass++)
 	{
-		annealPoses(o, params, spread);
+		annealPoses(o, params, spread, converged);
 		const mrpt::obs::CActionCollection jitter = jitterOf(spread, params);
 		pf.executeOn(pdf, &jitter, &sf);
 		const Spread before = spread;

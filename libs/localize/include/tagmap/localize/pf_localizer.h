@@ -51,11 +51,20 @@ struct PfParams
 	double globalPoseStdPosition = 0.5;
 	double globalPoseStdRotationDeg = 10;
 	/** Tag poses: at most this many annealing passes per scan (each shrinks
-	 *  the belief ~1/sqrt(2); 10 take a 0.5 m spread to ~1.5 cm), and the
-	 *  jitter between passes as a fraction of the belief's spread. */
+	 *  the belief ~1/sqrt(2); 10 take a 0.5 m spread to ~1.5 cm), the
+	 *  jitter between passes as a fraction of the belief's spread, and the
+	 *  extra tag-pose std as a multiple of that spread: twice it while the
+	 *  belief is global (a uniform start has few particles near the truth,
+	 *  and a narrower likelihood collapses it onto the nearest), as wide as
+	 *  it once converged: the belief is then one blob whose spread is the
+	 *  motion noise, and at 2x each pass moved its mean only a fifth of the
+	 *  way to the tags (spread^2 / (spread^2 + (2 spread)^2)), so the passes
+	 *  stopped narrowing with the end of an odometry gap still centimetres
+	 *  behind the fixes (at 1x: half the way per pass). */
 	int annealPasses = 20;
 	double annealJitter = 0.2;
 	double annealWidth = 2;
+	double trackingAnnealWidth = 1;
 	double globalRangeStd = 0.4;  // ranges: metres, likelihood while the belief is spread
 	double trackingRangeStd = 0.05;  // ranges: metres, once converged (>= detector range noise)
 	/** Tag poses: the fraction of the particles drawn, at each scan with a
