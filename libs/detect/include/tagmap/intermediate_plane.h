@@ -22,7 +22,7 @@ struct IntermediatePlaneParams
 {
 	double pixelSpacings = 0.6;  // pixel edge, in local point spacings
 	double splatSpacings = 0.6;  // Gaussian splat sigma, in local point spacings
-	int maxImagePixels = 1200;  // image edge cap
+	int maxImagePixels = 200;  // image edge cap (see default.yaml)
 	/** The finest image a decode needs: the smallest cell of any tag the
 	 *  detection can report (renderIntermediatePlane's `smallestCell`) this
 	 *  many pixels across. Maps denser than that (mm spacing) made images
