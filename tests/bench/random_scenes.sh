@@ -5,7 +5,10 @@
 # up to 0.52 x 5.2 mrad = 0.03 x 0.3 deg, like the real MID-40), pointing
 # jitter 0-1 mrad, range walk 0-5 mm (dark ink reads farther), intensity
 # model (gain, incidence and range fall-off, noise, saturation 0.4-1 of the
-# received level, 8 or 16 bit integer levels), ink and paper albedo, boards,
+# received level, 8 or 16 bit integer levels), the range at which the
+# receiver loses 10 % reflectivity (20-120 m; an echo returns or not by its
+# received power, 1/r^2, not by the reported intensity's falloff), ink and
+# paper albedo, boards,
 # and 3-5 tag-like distractors (checkerboards, random-block posters, text,
 # stripes, facade window grids, QR-like codes, black-bordered squares with a
 # non-tag interior) beside 2-3 tags of the strong families, at 3-7 m
@@ -114,24 +117,30 @@ draw_scene() {
 				d * u(0.3, 0.7), u(-1.5, 1.5), u(0.3, 0.5), seed * 10 + 9
 			drawn = drawn " zebra"
 		}
+		# The beam count and the runs draw before the range at 10 %, which
+		# came later: a seed keeps its beams and path.
+		beams = livox ? 0 : (rand() < 0.5 ? 32 : 64)
+		if (livox) runs = sprintf("  - {name: still, sensor: s, waypoints: [{position: [0, 0, 1.4], look_at: [%.3f, 0, 1.4]}], duration: %.1f}\n", d, u(1.0, 3.0))
+		else {
+			runs = "  - name: walk\n    sensor: s\n    waypoints:\n"
+			runs = runs sprintf("      - {t: 0, position: [%.2f, -3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5))
+			runs = runs sprintf("      - {t: 4, position: [%.2f, 3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5))
+		}
+		# Whether an echo returns follows its received power (1/r^2): the
+		# range at which 10 % reflectivity is lost, as spec sheets give it
+		# (a MID-40 90 m, an OS1 ~40 m, low-cost units less).
+		r10 = u(20, 120)
 		print "sensors:"
-		intensity = sprintf("intensity: {gain: %.2f, incidence_exponent: %.2f, range_falloff_exponent: %.2f, noise: %.3f, saturation: %.2f, bits: %d}", gain, inc, fall, inoise, sat, bits)
+		intensity = sprintf("intensity: {gain: %.2f, incidence_exponent: %.2f, range_falloff_exponent: %.2f, noise: %.3f, saturation: %.2f, bits: %d, detection_range_10pct: %.0f}", gain, inc, fall, inoise, sat, bits, r10)
 		divergence = elliptical ? sprintf("[%.2f, %.2f]", bh, bv) : sprintf("%.2f", div)
 		beam = sprintf("range_noise: %.4f, range_walk: %.4f, beam: {divergence_mrad: %s, pointing_jitter_mrad: %.2f}", noise, walk, divergence, jitter)
 		if (livox) printf "  - {name: s, type: livox_mid40, %s, %s}\n", beam, intensity
-		else printf "  - {name: s, type: spinning, beams: %d, vertical_fov_deg: [-22.5, 22.5], columns: 1024, rev_per_second: 10, %s, %s}\n", (rand() < 0.5 ? 32 : 64), beam, intensity
+		else printf "  - {name: s, type: spinning, beams: %d, vertical_fov_deg: [-22.5, 22.5], columns: 1024, rev_per_second: 10, %s, %s}\n", beams, beam, intensity
 		print "runs:"
-		if (livox) printf "  - {name: still, sensor: s, waypoints: [{position: [0, 0, 1.4], look_at: [%.3f, 0, 1.4]}], duration: %.1f}\n", d, u(1.0, 3.0)
-		else {
-			print "  - name: walk"
-			print "    sensor: s"
-			print "    waypoints:"
-			printf "      - {t: 0, position: [%.2f, -3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5)
-			printf "      - {t: 4, position: [%.2f, 3, 1.2], rpy_deg: [0, 0, 0]}\n", u(0.5, 1.5)
-		}
+		printf "%s", runs
 		beamText = elliptical ? sprintf("%.2fx%.2f", bh, bv) : sprintf("%.2f", div)
-		printf "%-10s %-8s %5.1f m  noise %4.1f mm  beam %s mrad  jitter %4.2f mrad  walk %3.1f mm  gain %4.2f  incidence^%4.2f  range^%4.2f  I-noise %5.3f  sat %4.2f  %2d bit  tags%s  distractors%s\n",
-			"random_" seed, livox ? "livox" : "spinning", d, 1000 * noise, beamText, jitter, 1000 * walk, gain, inc, fall, inoise, sat, bits, tags, drawn > "/dev/stderr"
+		printf "%-10s %-8s %5.1f m  noise %4.1f mm  beam %s mrad  jitter %4.2f mrad  walk %3.1f mm  gain %4.2f  incidence^%4.2f  range^%4.2f  I-noise %5.3f  sat %4.2f  %2d bit  10%% lost at %3.0f m  tags%s  distractors%s\n",
+			"random_" seed, livox ? "livox" : "spinning", d, 1000 * noise, beamText, jitter, 1000 * walk, gain, inc, fall, inoise, sat, bits, r10, tags, drawn > "/dev/stderr"
 	}'
 }
 

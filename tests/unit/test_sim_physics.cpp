@@ -8,6 +8,7 @@
 
 #include "tagmap/errors.h"
 #include "tagmap/sim/scene_loader.h"
+#include "tagmap/sim/intensity_model.h"
 #include "tagmap/sim/simulate.h"
 
 using namespace tagmap::sim;
@@ -343,4 +344,30 @@ TEST(SimPhysics, SaturationClipsAndBitsQuantize)
 							"runs:\n  - {name: r, sensor: s, duration: 0.1, waypoints: [{position: [0, 0, 0]}]}\n",
 							"q.yaml"),
 				 tagmap::InputError);
+}
+
+TEST(SimPhysics, DetectionRangeFollowsReceivedPowerNotTheReportedFalloff)
+{
+	// A MID-40-like receiver (10 % reflectivity returns to 90 m): 2 % ink
+	// returns to 90 * sqrt(0.2) = 40.2 m whatever the reported intensity's
+	// residual falloff; the legacy threshold applies that falloff, and at
+	// range^2 loses the same ink beyond 2.6 m.
+	IntensityParams legacy;
+	legacy.rangeFalloffExponent = 2;
+	IntensityParams power = legacy;
+	power.detectionRange10 = 90;
+	const IntensityModel a(legacy), b(power);
+	const double ink = a.returnStrength(0.02, 1.0);
+	EXPECT_TRUE(a.detected(ink, 2.5));
+	EXPECT_FALSE(a.detected(ink, 2.7));
+	EXPECT_TRUE(b.detected(ink, 40.0));
+	EXPECT_FALSE(b.detected(ink, 40.5));
+	EXPECT_FALSE(b.detected(0.0, 1.0));  // no echo is never detected
+	Rng r1(7), r2(7);
+	EXPECT_EQ(a.intensity(ink, 10.0, r1), b.intensity(ink, 10.0, r2));  // what it reports is unchanged
+	const Scene parsed = parseScene(
+		"name: q\nobjects: []\nsensors:\n  - {name: s, type: livox_mid40, intensity: {detection_range_10pct: 90}}\n"
+		"runs:\n  - {name: r, sensor: s, duration: 0.1, waypoints: [{position: [0, 0, 0]}]}\n",
+		"q.yaml");
+	EXPECT_EQ(parsed.sensors[0].intensity.detectionRange10, 90);
 }

@@ -102,7 +102,7 @@ SensorSpec parseSensor(const YamlReader& r)
 	{
 		const YamlReader i = r.child("intensity");
 		i.allowKeys({"gain", "incidence_exponent", "range_reference", "range_falloff_exponent", "noise",
-					 "detection_threshold", "saturation", "bits"});
+					 "detection_threshold", "detection_range_10pct", "saturation", "bits"});
 		IntensityParams& p = s.intensity;
 		p.gain = i.positive("gain", p.gain);
 		p.incidenceExponent = i.positive("incidence_exponent", p.incidenceExponent, true);
@@ -110,6 +110,7 @@ SensorSpec parseSensor(const YamlReader& r)
 		p.rangeFalloffExponent = i.positive("range_falloff_exponent", p.rangeFalloffExponent, true);
 		p.noiseSigma = i.positive("noise", p.noiseSigma, true);
 		p.detectionThreshold = i.positive("detection_threshold", p.detectionThreshold, true);
+		p.detectionRange10 = i.positive("detection_range_10pct", p.detectionRange10, true);
 		p.saturation = i.positive("saturation", p.saturation);
 		if (p.saturation > 1) i.child("saturation").fail("must be within (0, 1]: the received level that reads full scale");
 		p.bits = i.integer("bits", p.bits);

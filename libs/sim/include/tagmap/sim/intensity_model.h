@@ -27,7 +27,15 @@ class IntensityModel
 	}
 
 	/** True if an echo of this strength at this range is detected at all. */
-	bool detected(double strength, double range) const { return strength * falloff(range) >= p_.detectionThreshold; }
+	bool detected(double strength, double range) const
+	{
+		if (p_.detectionRange10 > 0)
+		{
+			const double r = p_.detectionRange10 / std::max(range, p_.rangeReference);
+			return strength * r * r >= 0.1;
+		}
+		return strength * falloff(range) >= p_.detectionThreshold;
+	}
 
 	/** Noise-free received level in 0..1 of full scale (saturated echoes
 	 *  are 1): what the range walk depends on. */

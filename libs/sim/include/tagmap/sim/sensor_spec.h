@@ -65,7 +65,15 @@ struct IntensityParams
 	double rangeReference = 1.0;  // metres; no falloff closer than this
 	double rangeFalloffExponent = 0.5;  // residual falloff after the sensor's own calibration
 	double noiseSigma = 0.015;  // additive, in 0..1 units
-	double detectionThreshold = 0.003;  // weaker echoes are lost
+	double detectionThreshold = 0.003;  // weaker echoes are lost (after the residual falloff above)
+	/** > 0: whether an echo returns at all follows its received power
+	 *  instead, reflectivity x cos^k / range^2, lost below what a 10 %
+	 *  reflective surface returns at this range (metres; spec sheets give
+	 *  it: a Livox MID-40 90 m, an Ouster OS1 ~40 m). The reported
+	 *  intensity keeps its residual falloff: a sensor's calibration
+	 *  flattens what it reports, not what its receiver gets.
+	 *  `detectionThreshold` is then unused. */
+	double detectionRange10 = 0;
 	/** Received level (in the 0..1 units above, after gain) that fills the
 	 *  receiver's full scale: stronger echoes clip there (retro-reflectors,
 	 *  white paper close by). 1 = never before the 0..1 clamp. */
