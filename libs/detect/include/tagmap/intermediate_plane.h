@@ -22,7 +22,10 @@ struct IntermediatePlaneParams
 {
 	double pixelSpacings = 0.6;  // pixel edge, in local point spacings
 	double splatSpacings = 0.6;  // Gaussian splat sigma, in local point spacings
-	int maxImagePixels = 200;  // image edge cap (see default.yaml)
+	/** Image edge cap: a candidate holds one tag, and 200 pixels leave it
+	 *  5-16 per cell; finer images of dense maps resolve the points' scatter
+	 *  instead of averaging it (default.yaml has the numbers). */
+	int maxImagePixels = 200;
 	/** The finest image a decode needs: the smallest cell of any tag the
 	 *  detection can report (renderIntermediatePlane's `smallestCell`) this
 	 *  many pixels across. Maps denser than that (mm spacing) made images

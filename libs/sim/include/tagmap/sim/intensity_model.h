@@ -31,8 +31,9 @@ class IntensityModel
 	{
 		if (p_.detectionRange10 > 0)
 		{
+			constexpr double kSpecReflectivity = 0.1;  // the 10 % of detectionRange10
 			const double r = p_.detectionRange10 / std::max(range, p_.rangeReference);
-			return strength * r * r >= 0.1;
+			return strength * r * r >= kSpecReflectivity;
 		}
 		return strength * falloff(range) >= p_.detectionThreshold;
 	}
