@@ -910,3 +910,30 @@ TEST(SensorView, ReadsTheTagUnmirroredAndBoxesItsCorners)
 	EXPECT_NEAR(box.extent.x(), truth.size * 10 / 8 + 2 * 0.02, 0.02);
 	EXPECT_NEAR(box.extent.y(), truth.size * 10 / 8 + 2 * 0.02, 0.02);
 }
+
+TEST(SensorView, PointsNearAReadAreThoseWithinItsWidenedRectangle)
+{
+	// A full circle of points at the horizon, one per degree of azimuth: a
+	// read 2 pixels wide around azimuth 0 keeps the points within 3 quad
+	// sides (6 pixels) of its rectangle, on either side of the seam too.
+	SensorView v;
+	v.pixel = M_PI / 180;  // a degree per pixel
+	const int n = 360;
+	v.pixelOf.resize(n + 1);
+	for (int k = 0; k < n; k++) v.pixelOf[k] = Eigen::Vector2f(static_cast<float>(k) + 0.5f, 10.5f);
+	v.pixelOf[n] = Eigen::Vector2f(-1, -1);  // a point the view could not place
+	DecodedTag2D read;
+	read.corners = {Eigen::Vector2d(100, 10), Eigen::Vector2d(102, 10), Eigen::Vector2d(102, 12),
+					Eigen::Vector2d(100, 12)};
+	std::vector<uint32_t> expected;
+	for (uint32_t k = 94; k <= 107; k++) expected.push_back(k);  // pixel centres 94.5 .. 107.5 within [94, 108]
+	EXPECT_EQ(pointsNearReads(v, {read}, 3), expected);
+	// Past the seam: a read at columns 1-3 reaches back to the points a
+	// full turn (360 columns) on, at 355-359.
+	for (auto& c : read.corners) c.x() -= 99;
+	const std::vector<uint32_t> nearSeam = pointsNearReads(v, {read}, 3);
+	ASSERT_FALSE(nearSeam.empty());
+	EXPECT_EQ(nearSeam.front(), 0u);
+	EXPECT_EQ(nearSeam.back(), 359u);
+	EXPECT_EQ(std::count_if(nearSeam.begin(), nearSeam.end(), [](uint32_t k) { return k > 300; }), 5);
+}

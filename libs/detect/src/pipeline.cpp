@@ -122,8 +122,31 @@ struct MapView
 		  n(map.size())
 	{
 	}
+	MapView(const float* x, const float* y, const float* z, const float* i, size_t count)
+		: xs(x), ys(y), zs(z), is(i), n(count)
+	{
+	}
 	Eigen::Vector3d point(uint32_t i) const { return {xs[i], ys[i], zs[i]}; }
 };
+
+// Some of a map's points, copied into a map of their own.
+struct PointsSubset
+{
+	std::vector<float> xs, ys, zs, is;
+	PointsSubset(const MapView& m, const std::vector<uint32_t>& indices)
+	{
+		for (auto* v : {&xs, &ys, &zs, &is}) v->reserve(indices.size());
+		for (uint32_t i : indices)
+		{
+			xs.push_back(m.xs[i]);
+			ys.push_back(m.ys[i]);
+			zs.push_back(m.zs[i]);
+			is.push_back(m.is[i]);
+		}
+	}
+	MapView view() const { return {xs.data(), ys.data(), zs.data(), is.data(), xs.size()}; }
+};
+size_t itemsOut(const PointsSubset& s) { return s.xs.size(); }
 
 // Clusters at several tolerances: the point spacing varies across a map
 // (near and far views, overlapping passes), and a tag scanned more sparsely
@@ -718,14 +741,17 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 {
 	const auto tStart = Clock::now();
 	Detections out;
-	const MapView m(map);
-	if (m.n < kMinMapPoints) return out;
+	const MapView whole(map);
+	if (whole.n < kMinMapPoints) return out;
 	const unsigned threads = resolveThreads(params_.threads);
 	StageRunner stage(out.stages, progress);
 
 	// A scan read from its own sensor first: where the view holds no read,
-	// there is nothing to measure the scan's lengths for.
+	// there is nothing to measure the scan's lengths for; where it holds
+	// some, only the points around them are measured and searched.
+	MapView m = whole;
 	std::optional<SensorViewReads> viewReads;
+	std::optional<PointsSubset> nearReads;
 	if (params_.sensorView.enabled)
 	{
 		viewReads = stage.run("sensor_view", m.n, [&] {
@@ -736,6 +762,10 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 			out.totalSeconds = std::chrono::duration<double>(Clock::now() - tStart).count();
 			return out;
 		}
+		nearReads = stage.run("near_reads", m.n, [&] {
+			return PointsSubset(whole, pointsNearReads(viewReads->view, viewReads->reads, params_.sensorView.nearSides));
+		});
+		m = nearReads->view();
 	}
 	const double spacing = stage.run("point_spacing", m.n, [&] {
 		return estimatePointSpacing(m.xs, m.ys, m.zs, m.n, params_.spacing, threads);
@@ -751,7 +781,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	std::vector<Candidate> candidates;
 	if (viewReads)
 		candidates = stage.run("view_candidates", viewReads->reads.size(), [&] {
-			return proposeFromSensorView(m, *viewReads, params_, len, out.candidates);
+			return proposeFromSensorView(whole, *viewReads, params_, len, out.candidates);
 		});
 	else
 		candidates = proposeFromGradient(stage, m, grid, len, params_, threads, out.candidates);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
 #include "tagmap/intermediate_plane.h"
@@ -249,6 +250,30 @@ bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs
 	box.extent = Eigen::Vector3d(grow * 0.5 * across.norm() + 2 * band, grow * 0.5 * std::abs(down.dot(box.axes.col(1))) + 2 * band,
 								 box.thickness);
 	return true;
+}
+
+std::vector<uint32_t> pointsNearReads(const SensorView& view, const std::vector<DecodedTag2D>& reads, double sides)
+{
+	std::vector<Eigen::AlignedBox2d> rects;
+	for (const DecodedTag2D& d : reads)
+	{
+		Eigen::AlignedBox2d r;
+		for (const auto& c : d.corners) r.extend(c);
+		const double grow = sides * r.sizes().maxCoeff();
+		rects.emplace_back(r.min() - Eigen::Vector2d::Constant(grow), r.max() + Eigen::Vector2d::Constant(grow));
+	}
+	const double wrapColumns = 2 * kPi / view.pixel;
+	std::vector<uint32_t> near;
+	for (size_t i = 0; i < view.pixelOf.size(); i++)
+	{
+		const Eigen::Vector2f& f = view.pixelOf[i];
+		if (f.x() < 0) continue;
+		const Eigen::Vector2d at(f.x(), f.y()), wrapped(f.x() - wrapColumns, f.y());
+		if (std::any_of(rects.begin(), rects.end(),
+						[&](const Eigen::AlignedBox2d& r) { return r.contains(at) || r.contains(wrapped); }))
+			near.push_back(static_cast<uint32_t>(i));
+	}
+	return near;
 }
 
 }  // namespace tagmap

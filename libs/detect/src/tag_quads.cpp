@@ -30,13 +30,16 @@ double sampleBilinear(const cv::Mat& img, double x, double y)
 double borderContrast(const cv::Mat& img, double cx, double cy, double half, double angle)
 {
 	const double d = 0.12 * half;  // about half a cell
+	// The sides' outward normals: the first one turned by quarter turns
+	// (one sine and cosine per square; the search evaluates ~90 squares).
+	const double c = std::cos(angle), s = std::sin(angle);
+	const double normals[4][2] = {{c, s}, {-s, c}, {-c, -s}, {s, -c}};
 	double sum = 0;
 	int n = 0;
-	for (int side = 0; side < 4; side++)
+	for (const auto& normal : normals)
 	{
 		// Outward normal of this side, and the direction along it.
-		const double a = angle + side * M_PI / 2;
-		const double nx = std::cos(a), ny = std::sin(a), tx = -ny, ty = nx;
+		const double nx = normal[0], ny = normal[1], tx = -ny, ty = nx;
 		for (int k = -6; k <= 6; k++)
 		{
 			const double t = half * 0.85 * k / 6.0;

@@ -47,6 +47,10 @@ struct SensorViewParams
 	 *  candidate images' cap is for one tag's neighbourhood; a view holds
 	 *  the whole scan). */
 	int maxQuads = 64;
+	/** The scan's points kept around each read, in quad sides beyond its
+	 *  bounding rectangle (pointsNearReads()); the lengths are measured
+	 *  and the tags verified on those alone. */
+	double nearSides = 3;
 };
 
 /** The scan projected onto azimuth (columns, decreasing to the right, so
@@ -80,5 +84,13 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
  *  inside the quad or a corner's ray misses that plane. */
 bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs, const float* ys, const float* zs,
 			   size_t n, double band, OrientedBox& box);
+
+/** The scan's points (indices) seen within `sides` quad sides of a read:
+ *  each read's quad, its bounding rectangle widened by `sides` times its
+ *  longer side on every side. Everything the map path's stages 4-7 look at
+ *  around a tag (its gathered box, the support plane 1.5 tag sizes out,
+ *  the columns 3 tag sizes in front) lies there; the rest of the scan
+ *  only costs time. Ascending, each index once. */
+std::vector<uint32_t> pointsNearReads(const SensorView& view, const std::vector<DecodedTag2D>& reads, double sides);
 
 }  // namespace tagmap
