@@ -114,7 +114,8 @@ std::map<std::string, std::map<std::string, Binding>> bindings(PipelineParams& p
 		  {"seam_overlap_deg", bind(p.sensorView.seamOverlapDeg)},
 		  {"max_image_pixels", bind(p.sensorView.maxImagePixels)},
 		  {"quad_decimate", bind(p.sensorView.quadDecimate)},
-		  {"max_quads", bind(p.sensorView.maxQuads)}}},
+		  {"max_quads", bind(p.sensorView.maxQuads)},
+		  {"near_sides", bind(p.sensorView.nearSides)}}},
 		{"refinement",
 		 {{"refine", bind(p.refinement.refine)},
 		  {"min_pattern_fit", bind(p.refinement.minPatternFit)},
@@ -280,6 +281,8 @@ void PipelineParams::validate() const
 	if (sensorView.maxImagePixels < 64 || sensorView.maxImagePixels > 16384)
 		throw std::invalid_argument("sensor_view.max_image_pixels must be in [64, 16384]");
 	if (sensorView.maxQuads < 1 || sensorView.maxQuads > 1000) throw std::invalid_argument("sensor_view.max_quads must be 1..1000");
+	if (!(sensorView.nearSides >= 1 && sensorView.nearSides <= 100))
+		throw std::invalid_argument("sensor_view.near_sides must be in [1, 100]");
 	if (!(merge.conflictSigmas >= 0)) throw std::invalid_argument("merge.conflict_sigmas must be at least 0");
 	if (frontSide.columns < 1 || frontSide.columns > 64) throw std::invalid_argument("front_side.columns must be in [1, 64]");
 	if (!(frontSide.freeFraction >= 0 && frontSide.freeFraction < frontSide.blockedFraction &&
