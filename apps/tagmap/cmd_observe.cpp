@@ -21,18 +21,21 @@ namespace
 {
 const char* kUsage =
 	"Usage: tagmap observe IN.rawlog OUT.rawlog [--family F] [--tag-size S] [--config FILE]\n"
-	"                      [--window N] [--sensor-view] [--threads N] [--quiet]\n"
+	"                      [--window N] [--sensor-view | --map-path] [--threads N] [--quiet]\n"
 	"Detects the tags in every LiDAR scan of IN (sensor frame) and writes OUT: IN with,\n"
 	"next to each scan, a CObservationBeaconRanges (range to each tag centre, beacon IDs\n"
 	"as in docs/MRPT.md) and a tagmap::obs::CObservationTagPoses (T_sensor_tag + 6x6\n"
 	"covariance; RawLogViewer -l build/lib/libtagmap_mrpt_plugin.so shows it).\n"
-	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md).\n"
+	"Without --config the single-scan parameters are used (docs/LOCALIZATION.md); with it,\n"
+	"the file's sensor_view.enabled chooses the path unless a flag below does.\n"
 	"  --window N       detect on each scan merged with the N-1 scans before it, placed by the\n"
 	"                   rawlog's odometry (default 1: every scan alone). For short frames too\n"
 	"                   sparse to decode a tag (a 0.1 s Livox frame): e.g. 3-5 (docs/LOCALIZATION.md)\n"
 	"  --sensor-view    candidates from each scan's own spherical view, read by the decoders\n"
-	"                   (faster on sparse scans; one viewpoint, so not for a long --window over\n"
-	"                   fast motion; docs/LOCALIZATION.md for when it sees more or fewer tags)\n"
+	"                   (the default with --window 1: one scan, one viewpoint; with a window,\n"
+	"                   only over slow motion: docs/LOCALIZATION.md)\n"
+	"  --map-path       candidates from the 3D intensity gradient, as `detect` finds them (the\n"
+	"                   default with a --window above 1)\n"
 	"  --quiet          print nothing but errors (default: progress on stderr and a summary line)\n";
 
 }  // namespace
@@ -40,7 +43,8 @@ const char* kUsage =
 int runObserve(int argc, char** argv)
 {
 	return cli::runCommand("observe", [&] {
-		const cli::Args a = cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window"}), {"--help", "--quiet", "--sensor-view"});
+		const cli::Args a =
+			cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window"}), {"--help", "--quiet", "--sensor-view", "--map-path"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage << pipelineOptionsHelp();
@@ -48,9 +52,14 @@ int runObserve(int argc, char** argv)
 		}
 		if (a.positional.size() != 2) throw cli::UsageError("expected IN.rawlog and OUT.rawlog");
 		const std::string in = a.positional[0], out = a.positional[1];
-		// Single-scan parameters unless a config file replaces them; the flags win.
-		PipelineParams params = pipelineParamsFromArgs(a, localize::singleScanPipelineParams());
+		const long window = a.getInt("--window", 1);
+		// 100 frames of a 10 Hz sensor are 10 s: odometry drift no longer small.
+		if (window < 1 || window > 100) throw cli::UsageError("--window must be 1-100 scans");
+		if (a.has("--sensor-view") && a.has("--map-path")) throw cli::UsageError("--sensor-view or --map-path, not both");
+		// The window's parameters unless a config file replaces them; the flags win.
+		PipelineParams params = pipelineParamsFromArgs(a, localize::singleScanPipelineParams(static_cast<size_t>(window)));
 		if (a.has("--sensor-view")) params.sensorView.enabled = true;
+		if (a.has("--map-path")) params.sensorView.enabled = false;
 		checkOutputWritable(out);
 		const bool quiet = a.has("--quiet");
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
@@ -58,9 +67,6 @@ int runObserve(int argc, char** argv)
 		const mrpt::obs::CRawlog log = io::loadRawlog(in);
 		progress.update("reading", log.size(), log.size());
 		localize::ObserveParams observeParams;
-		const long window = a.getInt("--window", 1);
-		// 100 frames of a 10 Hz sensor are 10 s: odometry drift no longer small.
-		if (window < 1 || window > 100) throw cli::UsageError("--window must be 1-100 scans");
 		observeParams.window = static_cast<size_t>(window);
 		localize::ObserveReport report;
 		const mrpt::obs::CRawlog observed = localize::observeRawlog(

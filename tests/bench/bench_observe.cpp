@@ -15,9 +15,10 @@
 //
 //   build/bin/tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N]
 //                                  [--family LIST] [--seed S] [--window N] [--misses]
-//                                  [--sensor-view]
-// `both` is spinning and livox. --sensor-view: candidates from each scan's
-// own view (sensor_view.h) instead of the map path's stages 1-3.
+//                                  [--sensor-view | --map-path]
+// `both` is spinning and livox. The path is observe's: a single scan's
+// candidates from its own view (sensor_view.h), a window's from the map
+// path's stages 1-3; --sensor-view and --map-path choose either way.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -51,7 +52,7 @@ struct Options
 	uint64_t seed = 1;
 	size_t window = 0;  // 0: each sensor's own (spinning 1, Livox 3)
 	bool misses = false;  // explain every tag with points in the window that was not seen
-	bool sensorView = false;  // candidates from the scan's own view (sensor_view.h)
+	std::string path;  // "sensor-view" or "map-path" when chosen; observe's default otherwise
 };
 
 struct SensorRun
@@ -216,12 +217,12 @@ void benchSensor(const SensorRun& s, const Options& opt)
 	sim::SimulationOutput sim = sim::simulate(scene, simOpt);
 	if (opt.scans > 0 && sim.frames.size() > opt.scans) sim.frames.resize(opt.scans);
 
-	PipelineParams params = localize::singleScanPipelineParams();
-	params.families = parseFamilyList(opt.families);
-	params.threads = 1;
-	params.sensorView.enabled = opt.sensorView;
 	localize::ObserveParams observeParams;
 	observeParams.window = opt.window ? opt.window : s.window;
+	PipelineParams params = localize::singleScanPipelineParams(observeParams.window);
+	params.families = parseFamilyList(opt.families);
+	params.threads = 1;
+	if (!opt.path.empty()) params.sensorView.enabled = opt.path == "sensor-view";
 	localize::ObserveReport report;
 	const mrpt::obs::CRawlog observed =
 		localize::observeRawlog(sim::toRawlog(sim), Pipeline(params), observeParams, &report);
@@ -270,9 +271,9 @@ void benchSensor(const SensorRun& s, const Options& opt)
 		wrongId += ev.falseOf(FalseKind::WrongId);
 	}
 
-	std::printf("\n== %s, window %zu: %zu scans, %.0f points per detection (median), families %s, 1 thread\n",
-				s.label.c_str(), observeParams.window, report.perScan.size(), quantile(points, 0.5),
-				opt.families.c_str());
+	std::printf("\n== %s, window %zu, %s: %zu scans, %.0f points per detection (median), families %s, 1 thread\n",
+				s.label.c_str(), observeParams.window, params.sensorView.enabled ? "sensor view" : "map path",
+				report.perScan.size(), quantile(points, 0.5), opt.families.c_str());
 	std::printf("detect ms per scan: median %.2f, p90 %.2f, max %.2f; %.1f scans/s (all scans)\n", quantile(ms, 0.5),
 				quantile(ms, 0.9), quantile(ms, 1.0), report.perScan.size() / std::max(totalSeconds, 1e-9));
 	std::printf("%-20s %10s %10s %10s\n", "stage", "median ms", "p90 ms", "items in");
@@ -299,7 +300,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 {
 	std::fprintf(stderr,
 				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N] "
-				 "[--family LIST] [--seed S] [--window N] [--misses] [--sensor-view]\n",
+				 "[--family LIST] [--seed S] [--window N] [--misses] [--sensor-view | --map-path]\n",
 				 why);
 	std::exit(2);
 }
@@ -311,9 +312,15 @@ int main(int argc, char** argv)
 	for (int i = 1; i < argc; i++)
 	{
 		const std::string a = argv[i];
-		if (a == "--misses" || a == "--sensor-view")
+		if (a == "--misses")
 		{
-			(a == "--misses" ? opt.misses : opt.sensorView) = true;
+			opt.misses = true;
+			continue;
+		}
+		if (a == "--sensor-view" || a == "--map-path")
+		{
+			if (!opt.path.empty() && opt.path != a.substr(2)) usage("--sensor-view or --map-path, not both");
+			opt.path = a.substr(2);
 			continue;
 		}
 		if (i + 1 >= argc) usage(("missing value after " + a).c_str());

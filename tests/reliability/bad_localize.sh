@@ -88,6 +88,8 @@ CASE=observe-bad-threads
 observe_rejects "--threads" "$L/scans.rawlog" --threads 0
 CASE=observe-bad-window
 observe_rejects "--window must be 1-100" "$L/scans.rawlog" --window 0
+CASE=observe-both-paths
+observe_rejects "--sensor-view or --map-path, not both" "$L/scans.rawlog" --sensor-view --map-path
 CASE=observe-bad-family
 observe_rejects "tag37h11" "$L/scans.rawlog" --family tag37h11
 CASE=observe-output-under-a-file

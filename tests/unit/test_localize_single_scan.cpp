@@ -127,3 +127,11 @@ TEST(LocalizeSingleScanSensorView, ATagAcrossTheAzimuthSeamIsReadWhole)
 	EXPECT_LT(r.translationError, 0.03);
 	EXPECT_LT(r.rotationErrorDeg, 1.0);
 }
+
+TEST(LocalizeSingleScanSensorView, OneScanIsReadFromItsViewAWindowThroughTheMapPath)
+{
+	// A scan has one viewpoint; scans merged over a moving window do not.
+	EXPECT_TRUE(localize::singleScanPipelineParams().sensorView.enabled);
+	EXPECT_TRUE(localize::singleScanPipelineParams(1).sensorView.enabled);
+	EXPECT_FALSE(localize::singleScanPipelineParams(3).sensorView.enabled);
+}

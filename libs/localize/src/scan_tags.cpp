@@ -4,9 +4,10 @@
 
 namespace tagmap::localize
 {
-PipelineParams singleScanPipelineParams()
+PipelineParams singleScanPipelineParams(size_t window)
 {
 	PipelineParams p;
+	p.sensorView.enabled = window <= 1;
 	return p;
 }
 

@@ -15,11 +15,12 @@
 
 namespace tagmap::localize
 {
-/** Pipeline parameters for single scans. A scan is much sparser and less
- *  even than a map (a spinning LiDAR's rings, a short Livox frame), so the
- *  neighbourhood-based stages need looser settings than the map defaults;
- *  see docs/LOCALIZATION.md for which and why. */
-PipelineParams singleScanPipelineParams();
+/** Pipeline parameters for scans detected `window` at a time (observe's
+ *  --window). One scan has one viewpoint, so its candidates come from its
+ *  own sensor view (sensor_view.h: the fast path, and on sparse spinning
+ *  scans it sees more tags); scans merged over a window are seen from
+ *  several places while the robot moves, and take the map path. */
+PipelineParams singleScanPipelineParams(size_t window = 1);
 
 /** The scan's points in its own sensor frame (the observation's sensorPose
  *  undone), or nullopt for observations without intensity (not LiDAR). */
