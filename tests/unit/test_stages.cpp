@@ -902,7 +902,7 @@ TEST(SensorView, ReadsTheTagUnmirroredAndBoxesItsCorners)
 	ASSERT_EQ(reads.size(), 1u);
 	EXPECT_EQ(reads[0].id, truth.id);
 	OrientedBox box;
-	ASSERT_TRUE(boxOfRead(v, reads[0], xs, ys, zs, m.size(), 0.02, box));
+	ASSERT_TRUE(boxOfRead(v, reads[0], xs, ys, zs, pointsNearReads(v, reads, 1), 0.02, box));
 	EXPECT_LT((box.center - truth.position()).norm(), 0.01);
 	EXPECT_GT(std::abs(box.axes.col(2).dot(truth.pose.linear().col(2))), std::cos(2 * M_PI / 180));
 	// The printed tag: tag36h11's 8-cell border square and a cell of quiet

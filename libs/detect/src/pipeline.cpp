@@ -132,8 +132,9 @@ struct MapView
 // Some of a map's points, copied into a map of their own.
 struct PointsSubset
 {
+	std::vector<uint32_t> indices;  // in the map they were copied from, ascending
 	std::vector<float> xs, ys, zs, is;
-	PointsSubset(const MapView& m, const std::vector<uint32_t>& indices)
+	PointsSubset(const MapView& m, std::vector<uint32_t> from) : indices(std::move(from))
 	{
 		for (auto* v : {&xs, &ys, &zs, &is}) v->reserve(indices.size());
 		for (uint32_t i : indices)
@@ -310,10 +311,12 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	return out;
 }
 
-// Second half: the box around each read's corners; reads of one quad
-// (plain and mirrored, hard and soft) propose it once. Each box passes the
-// same size, squareness and flatness criteria as a cluster's.
-std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewReads& seen, const PipelineParams& p,
+// Second half: the box around each read's corners (from the scan's points
+// `near` the reads); reads of one quad (plain and mirrored, hard and soft)
+// propose it once. Each box passes the same size, squareness and flatness
+// criteria as a cluster's.
+std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewReads& seen,
+											 const std::vector<uint32_t>& near, const PipelineParams& p,
 											 const DerivedLengths& len, std::vector<CandidateReport>& reports)
 {
 	std::vector<Candidate> candidates;
@@ -321,7 +324,7 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewR
 	for (const DecodedTag2D& d : seen.reads)
 	{
 		OrientedBox box;
-		if (!boxOfRead(seen.view, d, m.xs, m.ys, m.zs, m.n, len.candidateBand, box)) continue;
+		if (!boxOfRead(seen.view, d, m.xs, m.ys, m.zs, near, len.candidateBand, box)) continue;
 		const bool again = std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
 			return (c.box.center - box.center).norm() < 0.25 * std::min(box.extent.x(), box.extent.y());
 		});
@@ -781,7 +784,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 	std::vector<Candidate> candidates;
 	if (viewReads)
 		candidates = stage.run("view_candidates", viewReads->reads.size(), [&] {
-			return proposeFromSensorView(whole, *viewReads, params_, len, out.candidates);
+			return proposeFromSensorView(whole, *viewReads, nearReads->indices, params_, len, out.candidates);
 		});
 	else
 		candidates = proposeFromGradient(stage, m, grid, len, params_, threads, out.candidates);

@@ -1,6 +1,7 @@
 #include "tagmap/sensor_view.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
@@ -68,6 +69,15 @@ double angularSpacing(const std::vector<Eigen::Vector2d>& ae, const Eigen::Vecto
 		used[static_cast<size_t>((p.y() - lo.y()) / cell) * W + static_cast<size_t>((p.x() - lo.x()) / cell)] = 1;
 	const double occupied = static_cast<double>(std::count(used.begin(), used.end(), 1));
 	return std::sqrt(occupied * cell * cell / n);
+}
+
+// Where a point of `view` shows: its own image position and, for a 360 deg
+// scan repeated past its seam, that position a full turn to the left (the
+// render splats both). Only for placed points (pixelOf x >= 0).
+std::array<Eigen::Vector2d, 2> imagePositions(const SensorView& view, const Eigen::Vector2f& f)
+{
+	const double turn = 2 * kPi / view.pixel;
+	return {Eigen::Vector2d(f.x(), f.y()), Eigen::Vector2d(f.x() - turn, f.y())};
 }
 
 bool insideQuad(const std::array<Eigen::Vector2d, 4>& q, const Eigen::Vector2d& p)
@@ -178,7 +188,7 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 }
 
 bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs, const float* ys, const float* zs,
-			   size_t n, double band, OrientedBox& box)
+			   const std::vector<uint32_t>& points, double band, OrientedBox& box)
 {
 	if (view.gray.empty()) return false;
 	// The points inside the quad shrunk by 10 % towards its centre: the
@@ -193,17 +203,14 @@ bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs
 		lo = lo.cwiseMin(inner[k]);
 		hi = hi.cwiseMax(inner[k]);
 	}
-	const double wrapColumns = 2 * kPi / view.pixel;
 	std::vector<uint32_t> inside;
-	for (size_t i = 0; i < n; i++)
+	for (const uint32_t i : points)
 	{
-		const Eigen::Vector2f& f = view.pixelOf[i];
-		if (f.x() < 0) continue;
-		for (const double shift : {0.0, -wrapColumns})
+		if (view.pixelOf[i].x() < 0) continue;  // not placed in the view
+		for (const Eigen::Vector2d& xy : imagePositions(view, view.pixelOf[i]))
 		{
-			const Eigen::Vector2d xy(f.x() + shift, f.y());
 			if (xy.x() < lo.x() || xy.x() > hi.x() || xy.y() < lo.y() || xy.y() > hi.y()) continue;
-			if (insideQuad(inner, xy)) inside.push_back(static_cast<uint32_t>(i));
+			if (insideQuad(inner, xy)) inside.push_back(i);
 		}
 	}
 	// A plane through them, refitted without the points beyond 3 RMS.
@@ -262,15 +269,13 @@ std::vector<uint32_t> pointsNearReads(const SensorView& view, const std::vector<
 		const double grow = sides * r.sizes().maxCoeff();
 		rects.emplace_back(r.min() - Eigen::Vector2d::Constant(grow), r.max() + Eigen::Vector2d::Constant(grow));
 	}
-	const double wrapColumns = 2 * kPi / view.pixel;
 	std::vector<uint32_t> near;
 	for (size_t i = 0; i < view.pixelOf.size(); i++)
 	{
-		const Eigen::Vector2f& f = view.pixelOf[i];
-		if (f.x() < 0) continue;
-		const Eigen::Vector2d at(f.x(), f.y()), wrapped(f.x() - wrapColumns, f.y());
+		if (view.pixelOf[i].x() < 0) continue;  // not placed in the view
+		const std::array<Eigen::Vector2d, 2> xy = imagePositions(view, view.pixelOf[i]);
 		if (std::any_of(rects.begin(), rects.end(),
-						[&](const Eigen::AlignedBox2d& r) { return r.contains(at) || r.contains(wrapped); }))
+						[&](const Eigen::AlignedBox2d& r) { return r.contains(xy[0]) || r.contains(xy[1]); }))
 			near.push_back(static_cast<uint32_t>(i));
 	}
 	return near;

@@ -80,10 +80,12 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
  *  the plane of the points inside the quad), length and width the printed
  *  tag's (the border square and its one-cell quiet zone) plus `band` on
  *  each side, height (and thickness) 4x the RMS of
- *  those points about the plane. False when fewer than 8 points fall
+ *  those points about the plane. `points`: the scan's points to look
+ *  among (ascending; all of them, or pointsNearReads(), which holds every
+ *  point inside a read's quad). False when fewer than 8 points fall
  *  inside the quad or a corner's ray misses that plane. */
 bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs, const float* ys, const float* zs,
-			   size_t n, double band, OrientedBox& box);
+			   const std::vector<uint32_t>& points, double band, OrientedBox& box);
 
 /** The scan's points (indices) seen within `sides` quad sides of a read:
  *  each read's quad, its bounding rectangle widened by `sides` times its
