@@ -14,7 +14,9 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -211,6 +213,22 @@ std::vector<std::string> parseFamilyList(const std::string& commaSeparated)
 
 // ---- bitmaps --------------------------------------------------------------
 
+namespace
+{
+// The family object renderTagBitmap() draws with, made once per process:
+// making one per call (the largest holds 65 k codes) was most of the time
+// of drawing every code of a family (the soft decoder's tables). Only read.
+const apriltag_family_t* drawingFamily(const std::string& name)
+{
+	static std::mutex mutex;
+	static std::map<std::string, AprilTagFamilyPtr> made;
+	std::lock_guard<std::mutex> lock(mutex);
+	auto it = made.find(name);
+	if (it == made.end()) it = made.emplace(name, createAprilTagFamily(name)).first;
+	return it->second.get();
+}
+}  // namespace
+
 TagBitmap renderTagBitmap(const std::string& family, int id)
 {
 	const TagFamilyInfo* info = findFamily(family);
@@ -227,8 +245,8 @@ TagBitmap renderTagBitmap(const std::string& family, int id)
 	int coreCells = 0, coreBorderStart = 0;
 	if (info->system == TagSystem::AprilTag)
 	{
-		AprilTagFamilyPtr fam = createAprilTagFamily(family);
-		image_u8_t* im = apriltag_to_image(fam.get(), id);
+		const apriltag_family_t* fam = drawingFamily(family);
+		image_u8_t* im = apriltag_to_image(const_cast<apriltag_family_t*>(fam), id);
 		coreCells = im->width;
 		core.resize(coreCells * coreCells);
 		for (int r = 0; r < coreCells; r++)

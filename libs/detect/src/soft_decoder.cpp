@@ -51,12 +51,17 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	fc.borderStart = first.borderStart;
 	fc.borderCells = first.borderCells;
 	const size_t all = static_cast<size_t>(fc.cells * fc.cells);
-	std::vector<TagBitmap> bitmaps;
+	// Every code's cells, one bit each: the largest families have 65 k
+	// codes, which as TagBitmaps held 10 MB while the table was built.
+	const size_t allBytes = (all + 7) / 8;
+	std::vector<uint8_t> cellsWhite(allBytes * static_cast<size_t>(fc.idCount), 0);
+	const auto isWhite = [&](int id, size_t i) { return (cellsWhite[id * allBytes + i / 8] >> (i % 8)) & 1u; };
 	std::vector<int> whiteCount(all, 0);
 	for (int id = 0; id < fc.idCount; id++)
 	{
-		bitmaps.push_back(renderTagBitmap(family, id));
-		for (size_t i = 0; i < all; i++) whiteCount[i] += bitmaps.back().pixels[i] ? 1 : 0;
+		const TagBitmap bm = renderTagBitmap(family, id);
+		for (size_t i = 0; i < all; i++)
+			if (bm.pixels[i]) whiteCount[i]++, cellsWhite[id * allBytes + i / 8] |= 1u << (i % 8);
 	}
 	// Cells that are the same in every code carry no information about the
 	// id; leaving them out makes the correlation tell codes apart.
@@ -68,7 +73,7 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	for (int id = 0; id < fc.idCount; id++)
 	{
 		for (size_t j = 0; j < n; j++)
-			if (bitmaps[id].pixels[fc.informative[j]] != 0) fc.white[id * fc.whiteBytes + j / 8] |= 1u << (j % 8);
+			if (isWhite(id, static_cast<size_t>(fc.informative[j]))) fc.white[id * fc.whiteBytes + j / 8] |= 1u << (j % 8);
 	}
 	// Cells every code shares: the border ring is black, the quiet zone white.
 	fc.borderMask.assign(all, 0);
