@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <opencv2/imgproc.hpp>
@@ -93,6 +94,38 @@ struct FitState
 {
 	double theta = 0, dx = 0, dy = 0, logScale = 0;  // relative to the initial pose and size
 };
+
+/** Bins a third of a cell wide: the pattern's correlation is judged on the
+ *  points' means over them (binnedCorrelation()). */
+constexpr double kBinsPerCell = 3;
+
+// The correlation of the points' intensities with the model, over the
+// means of the points in each bin a third of a cell wide (weighted by the
+// points in it). Per point, a sensor's intensity noise can outweigh the
+// print's contrast (121 points per cell, per-point correlation 0.36): the
+// question is whether the pattern is in the points, and means over a bin
+// keep the pattern while the noise averages out; a wrong pattern stays
+// wrong at any scale. With a point per bin it is the per-point correlation.
+double binnedCorrelation(const std::vector<Eigen::Vector2d>& q, const std::vector<double>& I,
+						 const std::vector<double>& model)
+{
+	std::map<std::pair<int64_t, int64_t>, std::array<double, 3>> bins;  // points, model sum, intensity sum
+	for (size_t k = 0; k < q.size(); k++)
+	{
+		std::array<double, 3>& b = bins[{static_cast<int64_t>(std::floor(q[k].x() * kBinsPerCell)),
+										 static_cast<int64_t>(std::floor(q[k].y() * kBinsPerCell))}];
+		b[0] += 1, b[1] += model[k], b[2] += I[k];
+	}
+	double n = 0, sm = 0, sI = 0, smm = 0, smI = 0, sII = 0;
+	for (const auto& [key, b] : bins)
+	{
+		const double m = b[1] / b[0], v = b[2] / b[0], w = b[0];
+		n += w, sm += w * m, sI += w * v, smm += w * m * m, smI += w * m * v, sII += w * v * v;
+	}
+	const double vm = smm / n - (sm / n) * (sm / n), vI = sII / n - (sI / n) * (sI / n);
+	const double cov = smI / n - (sm / n) * (sI / n);
+	return vm > 0 && vI > 0 ? cov / std::sqrt(vm * vI) : 0;
+}
 
 struct Evaluation
 {
@@ -263,7 +296,24 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 	}
 	t.patternFit = best.correlation;
 	t.patternPoints = static_cast<int>(q.size());
-	if (best.correlation < p.minPatternFit) return false;
+	if (p.minPatternFit <= 0)
+	{
+		if (best.correlation < p.minPatternFit) return false;
+	}
+	else
+	{
+		// The points in the refined tag frame, in cells, and the model there.
+		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
+		std::vector<Eigen::Vector2d> inCells(q.size());
+		std::vector<double> m(q.size());
+		for (size_t k = 0; k < q.size(); k++)
+		{
+			const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
+			inCells[k] = Eigen::Vector2d(c * x + sn * y, -sn * x + c * y) / cell;
+			m[k] = model->sample(inCells[k].x(), inCells[k].y());
+		}
+		if (binnedCorrelation(inCells, I, m) < p.minPatternFit) return false;
+	}
 
 	Eigen::Isometry3d delta = Eigen::Isometry3d::Identity();
 	delta.linear() = Eigen::AngleAxisd(s.theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();

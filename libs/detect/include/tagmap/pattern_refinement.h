@@ -15,7 +15,10 @@ namespace tagmap
 struct PatternRefinementParams
 {
 	bool refine = true;  // false: keep the decoder's corners, only verify
-	/** Reject a decode whose points correlate less than this with its bitmap. */
+	/** Reject a decode whose points correlate less than this with its
+	 *  bitmap: their means over bins a third of a cell wide (a sensor's
+	 *  intensity noise per point averages out there, a wrong pattern does
+	 *  not). TagDetection::patternFit stays the per-point correlation. */
 	double minPatternFit = 0.6;
 	int iterations = 12;
 	/** Let the size float too (when --tag-size is not given). */
