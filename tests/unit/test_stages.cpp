@@ -451,6 +451,42 @@ TEST(PatternRefinement, SquareAtTheEdgeOfItsPointsIsRejectedCleanly)
 	EXPECT_LT(t.patternFit, p.minPatternFit);
 }
 
+// A read cut off by its image is decoded again on the box its whole grid
+// fits in: centred on the read, as wide as the family's grid (with its
+// cells outside the border and the quiet zone), on the read's plane.
+TEST(TagPose, WholeGridBoxHoldsTheFamilysWholeGrid)
+{
+	PlaneImage plane;
+	plane.frame.origin = Eigen::Vector3d(2, -1, 0.5);
+	plane.frame.u = Eigen::Vector3d(0, 1, 0);
+	plane.frame.v = Eigen::Vector3d(0, 0, 1);
+	plane.frame.n = plane.frame.u.cross(plane.frame.v);
+	plane.frame.pixel = 0.004;
+	for (const std::string family : {"tag36h11", "tagStandard41h12"})
+	{
+		DecodedTag2D d;
+		d.family = family;
+		// A square of 50 px (0.2 m) turned by 30 deg about (100, 80).
+		const double a = M_PI / 6;
+		const Eigen::Vector2d centre(100, 80), e1(std::cos(a), std::sin(a)), e2(-std::sin(a), std::cos(a));
+		d.corners = {centre + 25 * (-e1 - e2), centre + 25 * (e1 - e2), centre + 25 * (e1 + e2),
+					 centre + 25 * (-e1 + e2)};
+		const OrientedBox box = wholeGridBox(d, plane);
+		const TagBitmap bm = renderTagBitmap(family, 0);
+		EXPECT_NEAR((box.center - plane.frame.toMap(centre)).norm(), 0, 1e-9) << family;
+		EXPECT_NEAR(box.extent.x(), 0.2 * bm.cells / bm.borderCells, 1e-9) << family;
+		EXPECT_NEAR(box.extent.y(), box.extent.x(), 1e-12) << family;
+		EXPECT_EQ(box.extent.z(), 0) << family;
+		EXPECT_NEAR((box.axes.transpose() * box.axes - Eigen::Matrix3d::Identity()).norm(), 0, 1e-9) << family;
+		EXPECT_NEAR((box.axes.col(2) - plane.frame.n).norm(), 0, 1e-12) << family;
+		const Eigen::Vector3d edge = plane.frame.toMap(d.corners[1]) - plane.frame.toMap(d.corners[0]);
+		EXPECT_NEAR(edge.normalized().dot(box.axes.col(0)), 1, 1e-9) << family;
+	}
+	// tagStandard41h12's grid is 11 cells across its 5-cell border.
+	EXPECT_GT(renderTagBitmap("tagStandard41h12", 0).cells / double(renderTagBitmap("tagStandard41h12", 0).borderCells),
+			  2.0);
+}
+
 // A tag scanned densely (~150 points per cell) by a sensor whose intensity
 // noise per point is twice the print's contrast: per point the pattern
 // explains little (correlation ~0.45), yet the points hold it; a random

@@ -1,6 +1,7 @@
 #include "tagmap/pipeline.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <limits>
@@ -354,6 +355,9 @@ struct CandidateOutcome
 {
 	std::vector<TagDetection> tags;
 	CandidateReport report;
+	/** A read whose family's grid reaches past the image (the candidate's
+	 *  box cut the tag off): the box its whole grid fits in. */
+	std::optional<OrientedBox> readCutOff;
 };
 
 // The families a detection searches (all of them when none are named).
@@ -409,9 +413,26 @@ class CandidateDecoder
 	{
 	}
 
-	/** The candidate's tags and its report (`rep`, with what happened). */
+	/** The candidate's tags and its report (`rep`, with what happened). A
+	 *  read cut off by the candidate's image is decoded once more on an
+	 *  image of the box its whole grid fits in: families with data cells
+	 *  outside their border (tagStandard41h12, tagCircle49h12: 1.7-2.2 times
+	 *  the border across) reach past a box drawn around part of the tag. */
 	CandidateOutcome decodeCandidate(const Candidate& candidate, CandidateReport rep, const TagDecoder& hard,
 									 const SoftTagDecoder& soft) const
+	{
+		CandidateOutcome out = decodeBox(candidate, std::move(rep), hard, soft);
+		if (!out.tags.empty() || !out.readCutOff) return out;
+		Candidate recentred = candidate;
+		recentred.box = *out.readCutOff;
+		recentred.box.extent.z() = candidate.box.extent.z();  // the same slab about the plane
+		CandidateOutcome again = decodeBox(recentred, out.report, hard, soft);
+		return again.tags.empty() ? out : again;
+	}
+
+   private:
+	CandidateOutcome decodeBox(const Candidate& candidate, CandidateReport rep, const TagDecoder& hard,
+							   const SoftTagDecoder& soft) const
 	{
 		const OrientedBox& box = candidate.box;
 		CandidateOutcome out{{}, std::move(rep)};
@@ -473,7 +494,6 @@ class CandidateDecoder
 		return out;
 	}
 
-   private:
 	// Judges each read on the image it was read from, before anything
 	// costly, then in 3D; true when the candidate has a tag.
 	bool tryReads(std::vector<DecodedTag2D> reads, const cv::Mat& image, double scale, const PlaneImage& plane,
@@ -495,6 +515,7 @@ class CandidateDecoder
 					if (!again.rejection) d = std::move(*placed), ev = std::move(again);
 				}
 			for (auto& c : d.corners) c *= scale;
+			if (ev.rejection && ev.cells.empty() && !out.readCutOff) out.readCutOff = wholeGridBox(d, plane);
 			TagDetection t;
 			const Verdict v = ev.rejection ? *ev.rejection : verifyRead(d, ev, plane, t);
 			if (keepImages_)

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "tagmap/point_stats.h"
+#include "tagmap/tag_family.h"
 
 namespace tagmap
 {
@@ -26,6 +27,21 @@ double measuredTagSize(const Quad& corners, const PlaneImage& plane)
 double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane)
 {
 	return measuredTagSize(decoded.corners, plane);
+}
+
+OrientedBox wholeGridBox(const DecodedTag2D& decoded, const PlaneImage& plane)
+{
+	const Quad& c = decoded.corners;
+	const TagBitmap grid = renderTagBitmap(decoded.family, 0);  // the same grid for every id
+	const double across = measuredTagSize(decoded, plane) * grid.cells / grid.borderCells;
+	OrientedBox box;
+	box.center = plane.frame.toMap(0.25 * (c[0] + c[1] + c[2] + c[3]));
+	const Eigen::Vector3d along = (plane.frame.toMap(c[1]) - plane.frame.toMap(c[0])).normalized();
+	box.axes.col(0) = along;
+	box.axes.col(1) = plane.frame.n.cross(along);
+	box.axes.col(2) = plane.frame.n;
+	box.extent = Eigen::Vector3d(across, across, 0);
+	return box;
 }
 
 TagDetection solveTagPose(const DecodedTag2D& decoded, const PlaneImage& plane, double knownSize)

@@ -15,6 +15,13 @@ double measuredTagSize(const DecodedTag2D& decoded, const PlaneImage& plane);
 /** The same for any outline on the image (tag_quads.h). */
 double measuredTagSize(const Quad& corners, const PlaneImage& plane);
 
+/** The box a read's whole grid fits in (its family's cells beyond the
+ *  border, and the quiet zone: TagBitmap::cells across), centred on the
+ *  read, axes along its first edge, across it and the plane normal;
+ *  no thickness (extent.z() 0). A read cut off by the image it was read
+ *  from is decoded again on an image of this box. */
+OrientedBox wholeGridBox(const DecodedTag2D& decoded, const PlaneImage& plane);
+
 /** `knownSize` > 0 forces the model size; otherwise it is measured from
  *  the corners. The tag's z axis is the plane normal, oriented by the
  *  corner order (z = x_tag cross y_tag), so mirrored reads come out right. */
