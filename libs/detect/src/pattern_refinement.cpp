@@ -109,16 +109,28 @@ constexpr double kBinsPerCell = 3;
 double binnedCorrelation(const std::vector<Eigen::Vector2d>& q, const std::vector<double>& I,
 						 const std::vector<double>& model)
 {
-	std::map<std::pair<int64_t, int64_t>, std::array<double, 3>> bins;  // points, model sum, intensity sum
+	if (q.empty()) return 0;
+	// The points lie on the tag's grid (fitBitmap's reach): a dense array
+	// of bins, x-major, spans them.
+	std::vector<int64_t> bx(q.size()), by(q.size());
 	for (size_t k = 0; k < q.size(); k++)
 	{
-		std::array<double, 3>& b = bins[{static_cast<int64_t>(std::floor(q[k].x() * kBinsPerCell)),
-										 static_cast<int64_t>(std::floor(q[k].y() * kBinsPerCell))}];
+		bx[k] = static_cast<int64_t>(std::floor(q[k].x() * kBinsPerCell));
+		by[k] = static_cast<int64_t>(std::floor(q[k].y() * kBinsPerCell));
+	}
+	const auto [x0, x1] = std::minmax_element(bx.begin(), bx.end());
+	const auto [y0, y1] = std::minmax_element(by.begin(), by.end());
+	const int64_t minX = *x0, minY = *y0, height = *y1 - minY + 1;
+	std::vector<std::array<double, 3>> bins(static_cast<size_t>((*x1 - minX + 1) * height));  // points, model sum, intensity sum
+	for (size_t k = 0; k < q.size(); k++)
+	{
+		std::array<double, 3>& b = bins[static_cast<size_t>((bx[k] - minX) * height + (by[k] - minY))];
 		b[0] += 1, b[1] += model[k], b[2] += I[k];
 	}
 	double n = 0, sm = 0, sI = 0, smm = 0, smI = 0, sII = 0;
-	for (const auto& [key, b] : bins)
+	for (const std::array<double, 3>& b : bins)
 	{
+		if (b[0] == 0) continue;
 		const double m = b[1] / b[0], v = b[2] / b[0], w = b[0];
 		n += w, sm += w * m, sI += w * v, smm += w * m * m, smI += w * m * v, sII += w * v * v;
 	}
