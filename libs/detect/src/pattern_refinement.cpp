@@ -95,6 +95,22 @@ struct FitState
 	double theta = 0, dx = 0, dy = 0, logScale = 0;  // relative to the initial pose and size
 };
 
+// A point of the initial tag frame in the refined one, in cells: the
+// inverse of (rotate by theta, then shift), over the refined cell.
+struct RefinedFrame
+{
+	double dx, dy, c, sn, cell;
+	RefinedFrame(const FitState& s, double cell0)
+		: dx(s.dx), dy(s.dy), c(std::cos(s.theta)), sn(std::sin(s.theta)), cell(cell0 * std::exp(s.logScale))
+	{
+	}
+	Eigen::Vector2d inCells(const Eigen::Vector2d& q) const
+	{
+		const double x = q.x() - dx, y = q.y() - dy;
+		return {(c * x + sn * y) / cell, (-sn * x + c * y) / cell};
+	}
+};
+
 /** Bins a third of a cell wide: the pattern's correlation is judged on the
  *  points' means over them (binnedCorrelation()). */
 constexpr double kBinsPerCell = 3;
@@ -182,15 +198,13 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 	const PatternModel* chosen = nullptr;
 	auto evaluate = [&](const FitState& s, bool wantResiduals) {
 		Evaluation e;
-		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
+		const RefinedFrame frame(s, cell0);
 		std::vector<double> m(q.size());
 		double sm = 0, sI = 0, smm = 0, smI = 0, sII = 0;
 		for (size_t k = 0; k < q.size(); k++)
 		{
-			// Point in the refined tag frame: inverse of (rotate by theta, then shift).
-			const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
-			const double xr = c * x + sn * y, yr = -sn * x + c * y;
-			const double v = m[k] = model->sample(xr / cell, yr / cell);
+			const Eigen::Vector2d at = frame.inCells(q[k]);
+			const double v = m[k] = model->sample(at.x(), at.y());
 			sm += v;
 			sI += I[k];
 			smm += v * v;
@@ -276,13 +290,12 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 		{
 			const Eigen::MatrixXd J = jacobian(s, best.residuals, 3);
 			const Eigen::Matrix3d Hinv = (J.transpose() * J).inverse();
-			const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
+			const RefinedFrame frame(s, cell0);
 			std::map<std::pair<int, int>, Eigen::Vector3d> perCell;
 			for (size_t k = 0; k < q.size(); k++)
 			{
-				const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
-				const std::pair<int, int> key(static_cast<int>(std::floor((c * x + sn * y) / cell)),
-											  static_cast<int>(std::floor((-sn * x + c * y) / cell)));
+				const Eigen::Vector2d at = frame.inCells(q[k]);
+				const std::pair<int, int> key(static_cast<int>(std::floor(at.x())), static_cast<int>(std::floor(at.y())));
 				auto it = perCell.try_emplace(key, Eigen::Vector3d::Zero()).first;
 				it->second += J.row(static_cast<long>(k)).transpose() * best.residuals(static_cast<long>(k));
 			}
@@ -315,13 +328,12 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 	else
 	{
 		// The points in the refined tag frame, in cells, and the model there.
-		const double c = std::cos(s.theta), sn = std::sin(s.theta), cell = cell0 * std::exp(s.logScale);
+		const RefinedFrame frame(s, cell0);
 		std::vector<Eigen::Vector2d> inCells(q.size());
 		std::vector<double> m(q.size());
 		for (size_t k = 0; k < q.size(); k++)
 		{
-			const double x = q[k].x() - s.dx, y = q[k].y() - s.dy;
-			inCells[k] = Eigen::Vector2d(c * x + sn * y, -sn * x + c * y) / cell;
+			inCells[k] = frame.inCells(q[k]);
 			m[k] = model->sample(inCells[k].x(), inCells[k].y());
 		}
 		if (binnedCorrelation(inCells, I, m) < p.minPatternFit) return false;
