@@ -198,15 +198,23 @@ TEST(VoxelGrid, BlockScanVisitsTheSameVoxelsAsFind)
 
 TEST(OctreeGather, TreeAndRowSearchGatherExactlyTheBoxesPoints)
 {
-	// A small cloud (no tree: voxel rows searched directly) and a large one
-	// (the occupancy tree): both must return exactly the points a brute-force
+	// A small cloud (no tree: voxel rows searched directly), a large one
+	// (the occupancy tree) filling a cube, and a large one on two slanted
+	// surfaces with one point 60 km away (the tree over gaps, the x axis
+	// numbered packed): each must return exactly the points a brute-force
 	// test of every point puts inside the enlarged, tilted box.
-	for (const size_t n : {20000u, 400000u})
+	for (const size_t n : {20000u, 400000u, 400001u})
 	{
 		std::mt19937 rng(5);
 		std::uniform_real_distribution<float> u(0.0f, 1.0f);
 		std::vector<float> x(n), y(n), z(n);
-		for (size_t i = 0; i < n; i++) x[i] = 4 * u(rng), y[i] = 4 * u(rng), z[i] = 4 * u(rng);
+		const bool surfaces = n % 2 == 1;
+		for (size_t i = 0; i < n; i++)
+		{
+			x[i] = 4 * u(rng), y[i] = 4 * u(rng), z[i] = 4 * u(rng);
+			if (surfaces) z[i] = i % 2 ? 0.3f * x[i] + 0.2f * y[i] + 1 : 3.5f - 0.4f * y[i];
+		}
+		if (surfaces) x[n - 1] = 60000;
 		const VoxelGrid grid(x.data(), y.data(), z.data(), n, 0.02, 1);
 		const GatherParams params;
 		const OctreeGatherer gatherer(grid, 0.08, params, 1);
@@ -215,6 +223,7 @@ TEST(OctreeGather, TreeAndRowSearchGatherExactlyTheBoxesPoints)
 		{
 			OrientedBox box;
 			box.center = Eigen::Vector3d(0.5 + 0.7 * k, 2.0, 1.0 + 0.5 * k);
+			if (surfaces) box.center.z() = 0.3 * box.center.x() + 0.2 * box.center.y() + 1;  // on the first surface
 			box.axes = Eigen::AngleAxisd(0.3 * k + 0.2, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
 			box.extent = Eigen::Vector3d(0.6, 0.5, 0.05);
 			const double spacing = 0.01;

@@ -435,7 +435,7 @@ class CandidateDecoder
 							   const SoftTagDecoder& soft) const
 	{
 		const OrientedBox& box = candidate.box;
-		CandidateOutcome out{{}, std::move(rep)};
+		CandidateOutcome out{{}, std::move(rep), std::nullopt};
 		if (decodedFamilies_.empty())
 		{
 			out.report.verdict = Verdict::NoFamilyCanPass;

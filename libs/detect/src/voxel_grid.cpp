@@ -192,7 +192,7 @@ int64_t VoxelGrid::Axis::realOf(int32_t k) const
 
 VoxelKey VoxelGrid::keyOf(const Eigen::Vector3f& p) const
 {
-	return {axis_[0].keyOf(realCell(p.x(), 0)), axis_[1].keyOf(realCell(p.y(), 1)), axis_[2].keyOf(realCell(p.z(), 2))};
+	return {keyAlong(0, p.x()), keyAlong(1, p.y()), keyAlong(2, p.z())};
 }
 
 VoxelKey VoxelGrid::keyOfVoxel(size_t voxel) const

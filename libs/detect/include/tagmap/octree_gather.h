@@ -46,6 +46,10 @@ class OctreeGatherer
 	static constexpr size_t kTreeFromVoxels = 65536;
 
    private:
+	/** The voxel rows under the tree's occupied leaves within [lo, hi], as
+	 *  spans in ascending key order. */
+	std::vector<VoxelGrid::KeySpan> rowsUnderOccupiedLeaves(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+
 	const VoxelGrid& grid_;
 	GatherParams params_;
 	std::unique_ptr<octomap::OcTree> tree_;

@@ -45,6 +45,8 @@ class VoxelGrid
 	size_t pointCount() const { return order_.size(); }
 
 	VoxelKey keyOf(const Eigen::Vector3f& p) const;
+	/** One axis of keyOf(): keys are separable, axis by axis. */
+	int32_t keyAlong(int axis, float coordinate) const { return axis_[axis].keyOf(realCell(coordinate, axis)); }
 	VoxelKey keyOfVoxel(size_t voxel) const;
 	Eigen::Vector3d voxelCenter(const VoxelKey& k) const;
 
