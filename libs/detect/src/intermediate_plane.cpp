@@ -37,6 +37,19 @@ cv::Mat blurredAtScale(const cv::Mat& img, double s)
 	cv::resize(small, out, img.size(), 0, 0, cv::INTER_LINEAR);
 	return out;
 }
+/** exp(-d^2 k) at d = d0, d0 + 1, ..., `count` of them: each from the one
+ *  before, g(d + 1) = g(d) exp(-(2d + 1) k), whose factor shrinks by
+ *  exp(-2k) = `ratio` a step: two exps for a row of taps, not one per tap. */
+void gaussianTaps(double d0, int count, double k, double ratio, double* out)
+{
+	double g = std::exp(-d0 * d0 * k), factor = std::exp(-(2 * d0 + 1) * k);
+	for (int j = 0; j < count; j++)
+	{
+		out[j] = g;
+		g *= factor;
+		factor *= ratio;
+	}
+}
 }  // namespace
 
 void normalisedMean(const cv::Mat& wsum, const cv::Mat& isum, float eps, float knownAbove, cv::Mat& img, cv::Mat& known)
@@ -163,7 +176,8 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	const double sigmaPx = std::max(0.5, p.splatSpacings * out.localSpacing / fr.pixel);
 	const int rad = static_cast<int>(std::ceil(2 * sigmaPx));
 	const double inv2s2 = 1.0 / (2 * sigmaPx * sigmaPx);
-	std::vector<double> wx(static_cast<size_t>(2 * rad + 1));
+	std::vector<double> wx(static_cast<size_t>(2 * rad + 1)), wyTaps(wx.size());
+	const double tapRatio = std::exp(-2 * inv2s2);
 	std::vector<float> vals;
 	vals.reserve(in.size());
 	for (size_t k = 0; k < in.size(); k++)
@@ -174,17 +188,13 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 		const int cx = static_cast<int>(xy.x()), cy = static_cast<int>(xy.y());
 		const int x0 = std::max(0, cx - rad), x1 = std::min(W - 1, cx + rad);
 		const int y0 = std::max(0, cy - rad), y1 = std::min(H - 1, cy + rad);
-		// The Gaussian is separable: one exp per column and per row, not per
-		// pixel (the exps were most of the render's time).
-		for (int x = x0; x <= x1; x++)
-		{
-			const double dx = x + 0.5 - xy.x();
-			wx[static_cast<size_t>(x - x0)] = std::exp(-dx * dx * inv2s2);
-		}
+		// The Gaussian is separable: its taps along a row and down a column,
+		// not one per pixel (the exps were most of the render's time).
+		gaussianTaps(x0 + 0.5 - xy.x(), x1 - x0 + 1, inv2s2, tapRatio, wx.data());
+		gaussianTaps(y0 + 0.5 - xy.y(), y1 - y0 + 1, inv2s2, tapRatio, wyTaps.data());
 		for (int y = y0; y <= y1; y++)
 		{
-			const double dy = y + 0.5 - xy.y();
-			const double wy = std::exp(-dy * dy * inv2s2);
+			const double wy = wyTaps[static_cast<size_t>(y - y0)];
 			float* ws = wsum.ptr<float>(y);
 			float* iS = isum.ptr<float>(y);
 			for (int x = x0; x <= x1; x++)
