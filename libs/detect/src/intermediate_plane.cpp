@@ -100,13 +100,17 @@ void fillHoles(const cv::Mat& wsum, const cv::Mat& isum, double firstSigma, doub
 cv::Mat contrastNormalised(const cv::Mat& img, std::vector<float> intensities, const cv::Mat& known)
 {
 	// The points' own intensities set the contrast: the image does not
-	// depend on the sensor's intensity scale.
+	// depend on the sensor's intensity scale. Ranks in ascending order:
+	// each selection searches only above the one before (already partitioned).
+	size_t from = 0;
 	const auto at = [&](size_t k) {
-		std::nth_element(intensities.begin(), intensities.begin() + static_cast<std::ptrdiff_t>(k), intensities.end());
+		const auto first = intensities.begin() + static_cast<std::ptrdiff_t>(from);
+		std::nth_element(first, intensities.begin() + static_cast<std::ptrdiff_t>(k), intensities.end());
+		from = k;
 		return static_cast<double>(intensities[k]);
 	};
 	const size_t n = intensities.size();
-	const double lo8 = at(n * 2 / 100), hi8 = at(n * 98 / 100), mid = at(n / 2);
+	const double lo8 = at(n * 2 / 100), mid = at(n / 2), hi8 = at(n * 98 / 100);
 	const double scale = hi8 > lo8 ? 255.0 / (hi8 - lo8) : 1.0;
 	cv::Mat gray;
 	img.convertTo(gray, CV_8U, scale, -lo8 * scale);
