@@ -251,9 +251,9 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 			Eigen::Vector3f c = Eigen::Vector3f::Zero();
 			for (size_t k = first; k < last; k++) c += Eigen::Vector3f(sorted.x[k], sorted.y[k], sorted.z[k]);
 			c /= static_cast<float>(last - first);
-			const Eigen::Vector3f mid = grid.voxelCenter(grid.keyOfVoxel(v)).cast<float>();
-			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre's key then.
-			const Eigen::Vector3f probe = grid.keyOf(c) == grid.keyOfVoxel(v) ? c : mid;
+			// The centroid may sit in a neighbour voxel on a slanted surface; use the voxel centre then.
+			const VoxelKey key = grid.keyOfVoxel(v);
+			const Eigen::Vector3f probe = grid.keyOf(c) == key ? c : grid.voxelCenter(key).cast<float>();
 			// 1.5 r: an edge anywhere in the voxel is within reach of the centroid.
 			const double coarse =
 				gradientNorm(probe, sorted, spans, spanCount, 1.5 * radius, p.minNeighbours, 0.0, nullptr, 0.5 * cut);
