@@ -196,6 +196,34 @@ TEST(VoxelGrid, BlockScanVisitsTheSameVoxelsAsFind)
 	}
 }
 
+TEST(VoxelGrid, KeysWalkedRowByRowAreEachVoxelsKey)
+{
+	// Any range of voxels, starting mid-row or not, dense rows and lone
+	// voxels, an axis packed (one point 60 km off): the keys found along a
+	// row without dividing are keyOfVoxel()'s, and each axis of a centre is
+	// voxelCenter()'s.
+	std::mt19937 rng(6);
+	std::uniform_real_distribution<float> u(0.0f, 1.0f);
+	std::vector<float> x(20000), y(20000), z(20000);
+	for (size_t i = 0; i < x.size(); i++) x[i] = 2 * u(rng), y[i] = i % 3 ? 0.5f : u(rng), z[i] = 0.3f * u(rng);
+	x.back() = 60000;
+	const VoxelGrid grid(x.data(), y.data(), z.data(), x.size(), 0.02, 1);
+	std::uniform_int_distribution<size_t> start(0, grid.voxelCount() - 1);
+	for (int trial = 0; trial < 20; trial++)
+	{
+		const size_t b = trial == 0 ? 0 : start(rng), e = std::min(grid.voxelCount(), b + 5000);
+		size_t next = b;
+		grid.forEachVoxelKey(b, e, [&](size_t v, const VoxelKey& k) {
+			EXPECT_EQ(v, next++);
+			const VoxelKey expected = grid.keyOfVoxel(v);
+			ASSERT_TRUE(k.x == expected.x && k.y == expected.y && k.z == expected.z) << v;
+			for (int a = 0; a < 3; a++)
+				EXPECT_EQ(grid.centerAlong(a, a == 0 ? k.x : (a == 1 ? k.y : k.z)), grid.voxelCenter(k)[a]);
+		});
+		EXPECT_EQ(next, e);
+	}
+}
+
 TEST(OctreeGather, TreeAndRowSearchGatherExactlyTheBoxesPoints)
 {
 	// A small cloud (no tree: voxel rows searched directly), a large one

@@ -55,22 +55,37 @@ OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, double leaf, const GatherP
 	std::vector<std::vector<uint64_t>> parts(threads);
 	parallelForChunks(grid.voxelCount(), threads, [&](unsigned c, size_t b, size_t e) {
 		std::vector<uint64_t>& part = parts[c];
-		for (size_t v = b; v < e; v++)
-		{
-			const Eigen::Vector3d m = grid.voxelCenter(grid.keyOfVoxel(v));
-			octomap::OcTreeKey k;
-			if (!tree_->coordToKeyChecked(octomap::point3d(m.x(), m.y(), m.z()), k)) continue;
+		// The leaf of each voxel's centre (as an octomap::point3d: floats),
+		// axis by axis: a row's y and z keys once per row.
+		const auto leafKey = [&](int axis, int32_t key, octomap::key_type& out) {
+			return tree_->coordToKeyChecked(static_cast<float>(grid.centerAlong(axis, key)), out);
+		};
+		VoxelKey row{0, -1, -1};
+		bool rowInTree = false;
+		octomap::OcTreeKey k;
+		grid.forEachVoxelKey(b, e, [&](size_t, const VoxelKey& vk) {
+			if (vk.y != row.y || vk.z != row.z)
+			{
+				row = vk;
+				rowInTree = leafKey(1, vk.y, k[1]) && leafKey(2, vk.z, k[2]);
+			}
+			if (!rowInTree || !leafKey(0, vk.x, k[0])) return;
 			const uint64_t packed = k[0] | (uint64_t{k[1]} << 16) | (uint64_t{k[2]} << 32);
 			if (part.empty() || part.back() != packed) part.push_back(packed);  // runs along x share a leaf
-		}
+		});
+		// Rows next to each other share leaves too: each worker sorts out
+		// its own repeats, the merge below only those between workers.
+		std::sort(part.begin(), part.end());
+		part.erase(std::unique(part.begin(), part.end()), part.end());
 	});
 	std::vector<uint64_t> leaves;
 	for (auto& part : parts)
 	{
+		const auto middle = static_cast<std::ptrdiff_t>(leaves.size());
 		leaves.insert(leaves.end(), part.begin(), part.end());
+		std::inplace_merge(leaves.begin(), leaves.begin() + middle, leaves.end());
 		part = {};
 	}
-	std::sort(leaves.begin(), leaves.end());
 	leaves.erase(std::unique(leaves.begin(), leaves.end()), leaves.end());
 	for (uint64_t packed : leaves)
 	{

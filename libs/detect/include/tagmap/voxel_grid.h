@@ -49,6 +49,33 @@ class VoxelGrid
 	int32_t keyAlong(int axis, float coordinate) const { return axis_[axis].keyOf(realCell(coordinate, axis)); }
 	VoxelKey keyOfVoxel(size_t voxel) const;
 	Eigen::Vector3d voxelCenter(const VoxelKey& k) const;
+	/** One axis of voxelCenter(). */
+	double centerAlong(int axis, int32_t key) const
+	{
+		return origin_[axis] + cellSize_ * (static_cast<double>(axis_[axis].realOf(key)) + 0.5);
+	}
+
+	/** Calls f(v, keyOfVoxel(v)) for the voxels [b, e) in order. Voxels of
+	 *  one row follow each other: their keys differ in x only, found without
+	 *  the divisions keyOfVoxel() takes for each voxel. */
+	template <typename F>
+	void forEachVoxelKey(size_t b, size_t e, F&& f) const
+	{
+		uint64_t rowStart = 1, rowEnd = 0;  // no row yet
+		int32_t y = 0, z = 0;
+		for (size_t v = b; v < e; v++)
+		{
+			const uint64_t k = keys_[v];
+			if (k < rowStart || k >= rowEnd)
+			{
+				const VoxelKey first = keyOfVoxel(v);
+				y = first.y, z = first.z;
+				rowStart = k - static_cast<uint64_t>(first.x);
+				rowEnd = rowStart + dims_[0];
+			}
+			f(v, VoxelKey{static_cast<int32_t>(k - rowStart), y, z});
+		}
+	}
 
 	/** Voxel index for a key, or -1 when empty (binary search). */
 	int64_t find(const VoxelKey& k) const;
