@@ -35,6 +35,42 @@ void radixSort(std::vector<uint32_t>& v)
 		v.swap(tmp);
 	}
 }
+
+/** Along one axis, which voxel keys each leaf index in [kmin, kmax] covers
+ *  (its extent clipped to [lo, hi], as a box's bounds clip it), and for
+ *  each voxel key the leaf indices that cover it: a contiguous range, as
+ *  keys grow with the coordinate. */
+struct AxisCover
+{
+	std::vector<int> first, last;  // per leaf index - kmin
+	int keyLo = 0;
+	std::vector<std::pair<int, int>> leaves;  // per voxel key - keyLo: leaf indices (- kmin) [a, b]
+};
+
+AxisCover coverAlong(const octomap::OcTree& tree, const VoxelGrid& grid, int axis, int kmin, int kmax, double lo,
+					 double hi)
+{
+	AxisCover ax;
+	const double res = tree.getResolution(), nudge = grid.cellSize() * 1e-6;  // a bound on a voxel edge is not in the next
+	const int n = kmax - kmin + 1;
+	for (int l = 0; l < n; l++)
+	{
+		const double centre = tree.keyToCoord(static_cast<octomap::key_type>(kmin + l));
+		const double from = std::max(centre - 0.5 * res, lo), to = std::min(centre + 0.5 * res, hi);
+		ax.first.push_back(grid.keyAlong(axis, static_cast<float>(from + nudge)));
+		ax.last.push_back(grid.keyAlong(axis, static_cast<float>(to - nudge)));
+	}
+	ax.keyLo = *std::min_element(ax.first.begin(), ax.first.end());
+	const int keyHi = *std::max_element(ax.last.begin(), ax.last.end());
+	ax.leaves.assign(static_cast<size_t>(std::max(0, keyHi - ax.keyLo + 1)), {INT_MAX, INT_MIN});
+	for (int l = 0; l < n; l++)
+		for (int k = ax.first[l]; k <= ax.last[l]; k++)
+		{
+			auto& cover = ax.leaves[static_cast<size_t>(k - ax.keyLo)];
+			cover = {std::min(cover.first, l), std::max(cover.second, l)};
+		}
+	return ax;
+}
 }  // namespace
 
 OctreeGatherer::OctreeGatherer(const VoxelGrid& grid, double leaf, const GatherParams& p, unsigned threads)
@@ -132,38 +168,9 @@ std::vector<VoxelGrid::KeySpan> OctreeGatherer::rowsUnderOccupiedLeaves(const Ei
 	}
 	if (nodes.empty()) return {};
 
-	// Along each axis, the voxel keys each leaf index covers, its extent
-	// clipped to [lo, hi]; and for each voxel key, the leaf indices that
-	// cover it (a contiguous range: keys grow with the coordinate).
-	struct AxisCover
-	{
-		std::vector<int> first, last;  // per leaf index - kmin
-		int keyLo = 0;
-		std::vector<std::pair<int, int>> leaves;  // per voxel key - keyLo: leaf indices [a, b]
-	};
-	std::array<AxisCover, 3> axis;
-	const double cell = grid_.cellSize();
-	for (int a = 0; a < 3; a++)
-	{
-		AxisCover& ax = axis[a];
-		const int n = kmax[a] - kmin[a] + 1;
-		for (int l = 0; l < n; l++)
-		{
-			const double centre = tree_->keyToCoord(static_cast<octomap::key_type>(kmin[a] + l));
-			const double from = std::max(centre - 0.5 * res, lo[a]), to = std::min(centre + 0.5 * res, hi[a]);
-			ax.first.push_back(grid_.keyAlong(a, static_cast<float>(from + cell * 1e-6)));
-			ax.last.push_back(grid_.keyAlong(a, static_cast<float>(to - cell * 1e-6)));
-		}
-		ax.keyLo = *std::min_element(ax.first.begin(), ax.first.end());
-		const int keyHi = *std::max_element(ax.last.begin(), ax.last.end());
-		ax.leaves.assign(static_cast<size_t>(std::max(0, keyHi - ax.keyLo + 1)), {INT_MAX, INT_MIN});
-		for (int l = 0; l < n; l++)
-			for (int k = ax.first[l]; k <= ax.last[l]; k++)
-			{
-				auto& cover = ax.leaves[static_cast<size_t>(k - ax.keyLo)];
-				cover = {std::min(cover.first, l), std::max(cover.second, l)};
-			}
-	}
+	const std::array<AxisCover, 3> axis = {coverAlong(*tree_, grid_, 0, kmin[0], kmax[0], lo[0], hi[0]),
+											coverAlong(*tree_, grid_, 1, kmin[1], kmax[1], lo[1], hi[1]),
+											coverAlong(*tree_, grid_, 2, kmin[2], kmax[2], lo[2], hi[2])};
 
 	// Occupancy as bit rows along x, one per leaf (y, z).
 	const int nx = kmax[0] - kmin[0] + 1, ny = kmax[1] - kmin[1] + 1, nz = kmax[2] - kmin[2] + 1;
