@@ -748,6 +748,18 @@ TEST(ReadEvidence, CleanStrongTagIsAcceptedOnAPlainWhiteWall)
 	EXPECT_EQ(e.rejection, std::nullopt);
 }
 
+TEST(ReadEvidence, AGridOffTheImageIsNotJudgedByChance)
+{
+	// The same clean read with the image cut through its quiet zone: its
+	// cells cannot all be sampled, and that is said as such, not as chance.
+	const DrawnRead d = drawTag("tag36h11", 7, [](int, int) { return uint8_t(220); });
+	const cv::Mat cut = d.img(cv::Rect(0, 0, d.img.cols - static_cast<int>(d.read.corners[0].x()), d.img.rows)).clone();
+	const ReadEvidence e = assessRead(cut, d.read, 8, kEveryFamily, {});
+	EXPECT_TRUE(e.cells.empty());
+	EXPECT_EQ(e.rejection, Verdict::GridOffImage);
+	EXPECT_EQ(assessRead(d.img, d.read, 8, kEveryFamily, {}).rejection, std::nullopt);
+}
+
 TEST(ReadEvidence, FamiliesNoReadCanPassAreNotDecoded)
 {
 	// Among every family, an exact read of a weak family (or tagCircle21h7:

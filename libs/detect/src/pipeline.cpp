@@ -504,18 +504,19 @@ class CandidateDecoder
 			ReadEvidence ev = judgeRead(image, d, scale, plane, p_.evidence);
 			// A quad traced on a noisy or blurred border can sit a fraction
 			// of a cell off, and the cells along its edges then read their
-			// neighbours. A read rejected as by chance is judged again on
-			// the grid its family's frame places (placeByFrame(): no code
-			// favoured), at half the budget: the two placements together
-			// stay within one and a half budgets.
-			if (ev.rejection == Verdict::ByChance && scale == 1)
+			// neighbours, or its grid off the image. A read rejected as by
+			// chance or off the image is judged again on the grid its
+			// family's frame places (placeByFrame(): no code favoured), at
+			// half the budget: the two placements together stay within one
+			// and a half budgets.
+			if ((ev.rejection == Verdict::ByChance || ev.rejection == Verdict::GridOffImage) && scale == 1)
 				if (std::optional<DecodedTag2D> placed = placedByFrame(d, plane))
 				{
 					ReadEvidence again = judgeRead(image, *placed, scale, plane, secondPlacementEvidence_);
 					if (!again.rejection) d = std::move(*placed), ev = std::move(again);
 				}
 			for (auto& c : d.corners) c *= scale;
-			if (ev.rejection && ev.cells.empty() && !out.readCutOff) out.readCutOff = wholeGridBox(d, plane);
+			if (ev.rejection == Verdict::GridOffImage && !out.readCutOff) out.readCutOff = wholeGridBox(d, plane);
 			TagDetection t;
 			const Verdict v = ev.rejection ? *ev.rejection : verifyRead(d, ev, plane, t);
 			if (keepImages_)

@@ -315,6 +315,7 @@ ReadEvidence judgeSampledRead(const cv::Mat& gray8, const cv::Mat* measured, con
 	std::vector<float> cells = measured ? sampleMeasuredCells(gray8, *measured, read.corners, grid.cells, first, last)
 										: sampleCells(gray8, read.corners, grid.cells, first, last);
 	ReadEvidence e = judgeCells(cells, read.family, read.id, read.hamming, orientations, searched, p);
+	if (cells.empty()) e.rejection = Verdict::GridOffImage;  // nothing sampled: no chance to judge
 	e.cells = std::move(cells);
 	return e;
 }

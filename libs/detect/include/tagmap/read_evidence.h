@@ -62,7 +62,8 @@ struct ReadEvidence
 	/** The cell values judged (row-major over the family's whole grid, as
 	 *  sampleCells()); empty when the grid left the image. */
 	std::vector<float> cells;
-	/** Nothing when accepted, else Verdict::ByChance, NoBorder or NoQuietZone. */
+	/** Nothing when accepted, else Verdict::ByChance, NoBorder or
+	 *  NoQuietZone; GridOffImage when the grid left the image (no cells). */
 	std::optional<Verdict> rejection;
 };
 

@@ -22,6 +22,7 @@ enum class Verdict
 	TooFewPoints,
 	NoCodeShown,
 	ByChance,
+	GridOffImage,
 	NoBorder,
 	NoQuietZone,
 	SizeMismatch,
@@ -38,7 +39,7 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 17> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 18> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
@@ -56,6 +57,9 @@ inline constexpr std::array<VerdictInfo, 17> kVerdicts = {{
 	 "margin (a window pane, a plain panel): no decoder's read there could pass"},
 	{Verdict::ByChance, "by_chance",
 	 "a code was read, but a random pattern would match some code that well too often (evidence.chance_budget)"},
+	{Verdict::GridOffImage, "grid_off_image",
+	 "a code was read, but its family's grid reaches past the candidate's image, and past the image of the box "
+	 "the whole grid fits in too: its cells cannot be sampled (families with data cells outside their border)"},
 	{Verdict::NoBorder, "no_border",
 	 "a code was read, but the black border ring is not black (evidence.max_border_error_rate)"},
 	{Verdict::NoQuietZone, "no_quiet_zone",
