@@ -259,8 +259,8 @@ void PipelineParams::validate() const
 		throw std::invalid_argument("plane.pixels_per_cell must be 0 (no cap) or at least 2");
 	if (gather.octreeCellsPerLeaf < 1) throw std::invalid_argument("gather.octree_cells_per_leaf must be at least 1");
 	for (const auto& v : imageVariants)
-		if (v != "raw" && v != "otsu" && v != "half")
-			throw std::invalid_argument("image_variants: unknown variant '" + v + "' (valid: raw, otsu, half)");
+		if (v != "raw" && v != "otsu" && v != "half" && v != "half_smooth")
+			throw std::invalid_argument("image_variants: unknown variant '" + v + "' (valid: raw, otsu, half, half_smooth)");
 	if (!(evidence.chanceBudget > 0 && evidence.chanceBudget <= 1))
 		throw std::invalid_argument("evidence.chance_budget must be in (0, 1]");
 	if (!(evidence.maxBorderErrorRate >= 0 && evidence.maxBorderErrorRate <= 1) ||

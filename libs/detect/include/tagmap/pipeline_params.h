@@ -40,7 +40,7 @@ struct PipelineParams
 	double gradientRadiusSpacings = 2.5;
 
 	/** Image preparations tried in order (see image_variants.h). */
-	std::vector<std::string> imageVariants = {"raw", "otsu", "half"};
+	std::vector<std::string> imageVariants = {"raw", "otsu", "half_smooth"};
 
 	PointSpacingParams spacing;
 	IntensityGradientParams gradient;
