@@ -204,9 +204,7 @@ VoxelKey VoxelGrid::keyOfVoxel(size_t voxel) const
 
 Eigen::Vector3d VoxelGrid::voxelCenter(const VoxelKey& k) const
 {
-	return origin_ + cellSize_ * Eigen::Vector3d(static_cast<double>(axis_[0].realOf(k.x)) + 0.5,
-												  static_cast<double>(axis_[1].realOf(k.y)) + 0.5,
-												  static_cast<double>(axis_[2].realOf(k.z)) + 0.5);
+	return {centerAlong(0, k.x), centerAlong(1, k.y), centerAlong(2, k.z)};
 }
 
 int64_t VoxelGrid::find(const VoxelKey& k) const
