@@ -12,6 +12,12 @@ std::string Args::get(const std::string& opt, const std::string& def) const
 	return it == options.end() ? def : it->second;
 }
 
+std::vector<std::string> Args::getAll(const std::string& opt) const
+{
+	auto it = every.find(opt);
+	return it == every.end() ? std::vector<std::string>{} : it->second;
+}
+
 double Args::getDouble(const std::string& opt, double def) const
 {
 	auto it = options.find(opt);
@@ -75,6 +81,7 @@ Args parse(int argc, char** argv, int first, const std::set<std::string>& valueO
 					value = argv[++i];
 				}
 				a.options[s] = value;
+				a.every[s].push_back(value);
 			}
 			else if (switchOptions.count(s) && !inlineValue)
 				a.switches.insert(s);

@@ -21,11 +21,14 @@ class UsageError : public std::runtime_error
 struct Args
 {
 	std::vector<std::string> positional;
-	std::map<std::string, std::string> options;  // "--json" -> "out.json"
+	std::map<std::string, std::string> options;  // "--json" -> "out.json" (the last one given)
+	std::map<std::string, std::vector<std::string>> every;  // each value given, in order (--param A=1 --param B=2)
 	std::set<std::string> switches;  // "--quiet"
 
 	bool has(const std::string& opt) const { return options.count(opt) || switches.count(opt); }
 	std::string get(const std::string& opt, const std::string& def = {}) const;
+	/** Every value of a repeatable option, in the order given. */
+	std::vector<std::string> getAll(const std::string& opt) const;
 	/** Parses a number; throws UsageError "--opt: 'x' is not a number". */
 	double getDouble(const std::string& opt, double def) const;
 	long getInt(const std::string& opt, long def) const;

@@ -24,7 +24,8 @@ const char* kUsage =
 	"Simulates LiDAR scans of a YAML scene and writes DIR/map.pcd and DIR/ground_truth.json;\n"
 	"with --simplemap also DIR/scans.simplemap, DIR/trajectory_true.tum, DIR/trajectory_drifted.tum.\n"
 	"  --points N        rescale the sensors' density for a map of about N points\n"
-	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml)\n"
+	"  --param NAME=V    override a scene parameter (e.g. tag_distance=4 for accuracy.yaml);\n"
+	"                    repeat it for several (--param robot_beams=64 --param robot_columns=512)\n"
 	"  --run NAME        simulate only this run of the scene\n"
 	"  --rawlog FILE     also write an MRPT rawlog (odometry + scans) and DIR/trajectory_true.tum\n"
 	"  --las FORMAT      also write DIR/map.las, LAS point format 0..10 (1.2 for 0-3, else 1.4), 1 mm steps\n"
@@ -32,13 +33,19 @@ const char* kUsage =
 	"                    a georeferenced copy, e.g. 512345,5123456,187 (simplemap, rawlog unshifted)\n"
 	"  --quiet           print nothing but errors (default: progress on stderr and a summary line)\n";
 
-sim::SceneParameters parseParam(const std::string& s)
+// Every --param NAME=VALUE given (a later one of the same NAME wins).
+sim::SceneParameters parseParams(const std::vector<std::string>& given)
 {
-	const auto eq = s.find('=');
-	if (eq == std::string::npos || eq == 0) throw cli::UsageError("--param: expected NAME=VALUE, got '" + s + "'");
-	cli::Args tmp;
-	tmp.options["--param"] = s.substr(eq + 1);
-	return {{s.substr(0, eq), tmp.getDouble("--param", 0)}};
+	sim::SceneParameters params;
+	for (const std::string& s : given)
+	{
+		const auto eq = s.find('=');
+		if (eq == std::string::npos || eq == 0) throw cli::UsageError("--param: expected NAME=VALUE, got '" + s + "'");
+		cli::Args tmp;
+		tmp.options["--param"] = s.substr(eq + 1);
+		params[s.substr(0, eq)] = tmp.getDouble("--param", 0);
+	}
+	return params;
 }
 }  // namespace
 
@@ -70,7 +77,7 @@ int runSimulate(int argc, char** argv)
 		const Eigen::Vector3d shift = a.getVector3("--shift", Eigen::Vector3d::Zero());
 
 		sim::Scene scene =
-			sim::loadScene(a.positional[0], a.has("--param") ? parseParam(a.get("--param")) : sim::SceneParameters{});
+			sim::loadScene(a.positional[0], parseParams(a.getAll("--param")));
 		if (a.has("--run"))
 		{
 			auto& runs = scene.runs;

@@ -40,4 +40,14 @@ expect_rejects "--points" simulate "$GOOD" --out "$WORK/sim" --points -3
 CASE=scene-bad-param
 expect_rejects "--param" simulate "$GOOD" --out "$WORK/sim" --param noequals
 
+# Not bad input: every --param given applies, not only the last one.
+CASE=scene-two-params
+sed -e 's/^name: one_tag$/name: one_tag\nparameters: {first_id: 1, second_id: 2}/' \
+	-e 's/id: 3,/id: $first_id,/' -e 's/id: 7,/id: $second_id,/' "$GOOD" >"$S/two_params.yaml"
+run_tagmap simulate "$S/two_params.yaml" --out "$WORK/params" --param first_id=5 --param second_id=9 --quiet
+[ "$STATUS" -eq 0 ] || fail "simulate with two --param: status $STATUS: $ERR"
+ids=$(grep -o '"id": *[0-9]*' "$WORK/params/ground_truth.json" 2>/dev/null | grep -o '[0-9]*$' | sort -nu | tr '\n' ' ')
+[ "$ids" = "5 9 " ] || fail "tag ids '$ids', expected '5 9 ' (both --param applied)"
+CASES=$((CASES + 1))
+
 finish
