@@ -15,8 +15,10 @@
 //
 //   build/bin/tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N]
 //                                  [--family LIST] [--seed S] [--window N] [--misses]
-//                                  [--sensor-view | --map-path]
-// `both` is spinning and livox. The path is observe's: a single scan's
+//                                  [--sensor-view | --map-path] [--config FILE]
+// `both` is spinning and livox. --config reads the pipeline's parameters
+// as `tagmap observe --config` does (the file's sensor_view.enabled chooses
+// the path unless --sensor-view or --map-path does), to compare settings. The path is observe's: a single scan's
 // candidates from its own view (sensor_view.h), a window's from the map
 // path's stages 1-3; --sensor-view and --map-path choose either way.
 #include <algorithm>
@@ -29,6 +31,7 @@
 
 #include <mrpt/obs/CSensoryFrame.h>
 
+#include "tagmap/detection_settings.h"
 #include "tagmap/evaluation.h"
 #include "tagmap/localize/observe_rawlog.h"
 #include "tagmap/localize/rawlog_visit.h"
@@ -53,6 +56,7 @@ struct Options
 	size_t window = 0;  // 0: each sensor's own (spinning 1, Livox 3)
 	bool misses = false;  // explain every tag with points in the window that was not seen
 	std::string path;  // "sensor-view" or "map-path" when chosen; observe's default otherwise
+	std::string config;  // YAML parameters over the built-in defaults, as observe --config
 };
 
 struct SensorRun
@@ -219,9 +223,11 @@ void benchSensor(const SensorRun& s, const Options& opt)
 
 	localize::ObserveParams observeParams;
 	observeParams.window = opt.window ? opt.window : s.window;
-	PipelineParams params = localize::singleScanPipelineParams(observeParams.window);
-	params.families = parseFamilyList(opt.families);
-	params.threads = 1;
+	DetectionChoices choices;
+	choices.configFile = opt.config;
+	choices.families = opt.families;
+	choices.threads = 1;
+	PipelineParams params = resolveDetectionSettings(choices, localize::singleScanPipelineParams(observeParams.window));
 	if (!opt.path.empty()) params.sensorView.enabled = opt.path == "sensor-view";
 	localize::ObserveReport report;
 	const mrpt::obs::CRawlog observed =
@@ -300,7 +306,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 {
 	std::fprintf(stderr,
 				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N] "
-				 "[--family LIST] [--seed S] [--window N] [--misses] [--sensor-view | --map-path]\n",
+				 "[--family LIST] [--seed S] [--window N] [--misses] [--sensor-view | --map-path] [--config FILE]\n",
 				 why);
 	std::exit(2);
 }
@@ -331,6 +337,7 @@ int main(int argc, char** argv)
 		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0)
 			opt.window = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--seed") opt.seed = std::strtoull(v.c_str(), nullptr, 10);
+		else if (a == "--config") opt.config = v;
 		else usage(("unknown option or value: " + a + " " + v).c_str());
 	}
 	try
