@@ -25,7 +25,7 @@ found=$(grep -o '"family"' "$dir/parking.json" | wc -l)
 ((found == 3)) || { echo "FAIL: $found tag(s) detected in the parking map, expected 3"; exit 1; }
 # Searched with every family, the read of tag 0 (the fast, drifted pass) on
 # its decoder's quad has 2 of 36 bits wrong, more likely by chance than a
-# budget split 13 ways allows; on the grid its frame places (pipeline.cpp,
+# budget split 13 ways allows; on the grid its frame places (candidate_decoder.cpp,
 # placeByFrame()) it passes. Without that second placement this map gives 2.
 "$tagmap" detect "$dir/scans.simplemap" --json "$dir/parking_every_family.json" --threads 2 --quiet
 "$tagmap" compare "$dir/parking_every_family.json" "$dir/ground_truth.json" >"$dir/parking_every_family.txt" || true

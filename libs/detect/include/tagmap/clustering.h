@@ -16,7 +16,7 @@ struct ClusteringParams
 	 *  (on a voxel grid, so up to ~1.7 x that across a voxel diagonal). */
 	double toleranceSpacings = 3.0;
 	size_t minPoints = 20;  // fewer: noise, not a tag
-	/** Tolerance multipliers tried (multi-scale clustering, see pipeline.cpp). */
+	/** Tolerance multipliers tried (multi-scale clustering: addClusters in candidate_proposals.cpp). */
 	std::vector<double> scales = {1.0, 3.0};
 };
 

@@ -36,7 +36,7 @@ struct ReadEvidenceParams
 	 *  in a large cluttered map this allows ~0.1 false tags per map even if
 	 *  clutter were random bits; it is far less structured than that.
 	 *  A read rejected here and judged again on the grid its family's
-	 *  frame places (pipeline.cpp, placeByFrame()) has half of it there. */
+	 *  frame places (candidate_decoder.cpp, placeByFrame()) has half of it there. */
 	double chanceBudget = 1e-3;
 	/** A code cell within this fraction of the black-white contrast of the
 	 *  threshold is an erasure: it neither counts as wrong nor as evidence

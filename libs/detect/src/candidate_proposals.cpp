@@ -1,0 +1,139 @@
+#include "candidate_proposals.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "tagmap/tag_family.h"
+#include "tagmap/voxel_grid.h"
+
+namespace tagmap::detail
+{
+size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double levelScale, double spacing,
+				   const ClusteringParams& p, std::vector<Cluster>& clusters)
+{
+	for (double scale : p.scales)
+		for (Cluster& c :
+			 clusterPoints(m.xs, m.ys, m.zs, kept, levelScale * scale * p.toleranceSpacings * spacing, p.minPoints))
+		{
+			const bool seen = std::any_of(clusters.begin(), clusters.end(), [&](const Cluster& o) {
+				return o.points.size() == c.points.size() && o.points.front() == c.points.front();
+			});
+			if (!seen) clusters.push_back(std::move(c));
+		}
+	return clusters.size();
+}
+
+size_t splitOversizedClusters(const MapView& m, const std::vector<uint32_t>& keptByChance, double spacing,
+							  const DerivedLengths& len, const PipelineParams& p, std::vector<Cluster>& clusters)
+{
+	if (keptByChance.empty()) return 0;
+	const CandidateFilterParams cf = filterParams(p);
+	std::vector<uint32_t> significant;
+	for (size_t k = 0, before = clusters.size(); k < before; k++)
+	{
+		if (!tooLargeForATag(clusters[k].box, len.candidateBand, cf)) continue;
+		for (uint32_t i : clusters[k].points)
+			if (!std::binary_search(keptByChance.begin(), keptByChance.end(), i)) significant.push_back(i);
+	}
+	std::sort(significant.begin(), significant.end());
+	significant.erase(std::unique(significant.begin(), significant.end()), significant.end());
+	addClusters(m, significant, 1.0, spacing, p.clustering, clusters);
+	return significant.size();
+}
+
+size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, const DerivedLengths& len,
+						   const PipelineParams& p, unsigned threads, std::vector<Cluster>& clusters)
+{
+	size_t kept = 0;
+	double levelScale = 1;
+	for (int l = 1; l < p.gradient.densityLevels && level.sparsePoints.size() >= p.clustering.minPoints; l++)
+	{
+		levelScale *= 3;
+		const std::vector<uint32_t> subset = std::move(level.sparsePoints);
+		std::vector<float> sx(subset.size()), sy(subset.size()), sz(subset.size()), si(subset.size());
+		for (size_t k = 0; k < subset.size(); k++)
+			sx[k] = m.xs[subset[k]], sy[k] = m.ys[subset[k]], sz[k] = m.zs[subset[k]], si[k] = m.is[subset[k]];
+		const VoxelGrid subGrid(sx.data(), sy.data(), sz.data(), subset.size(), levelScale * len.voxelCell, threads);
+		level = filterByIntensityGradient(sx.data(), sy.data(), sz.data(), si.data(), subGrid,
+										  levelScale * len.gradientRadius, p.gradient, threads, level.intensitySpread);
+		for (auto* v : {&level.keptPoints, &level.sparsePoints})
+			for (auto& k : *v) k = subset[k];  // back to map indices (still ascending)
+		kept += level.keptPoints.size();
+		addClusters(m, level.keptPoints, levelScale, len.spacing, p.clustering, clusters);
+	}
+	return kept;
+}
+
+std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Cluster>& clusters,
+										 const CandidateFilterParams& cf, const DerivedLengths& len,
+										 std::vector<CandidateReport>& reports)
+{
+	std::vector<Candidate> candidates;
+	for (const Cluster& c : clusters)
+	{
+		const std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
+		CandidateReport rep;
+		rep.center = c.box.center;
+		rep.extent = c.box.extent;
+		rep.clusterPoints = c.points.size();
+		rep.verdict = why.value_or(Verdict::Candidate);
+		reports.push_back(rep);
+		if (!why) candidates.push_back({reports.size() - 1, c.box});
+		if (why != Verdict::Squareness) continue;
+		std::vector<double> along;
+		for (uint32_t i : c.points) along.push_back((m.point(i) - c.box.center).dot(c.box.axes.col(0)));
+		for (const OrientedBox& w : squareWindows(c.box, len.candidateBand, len.planeNoise, cf, along))
+		{
+			rep.center = w.center;
+			rep.extent = w.extent;
+			rep.verdict = Verdict::Candidate;
+			reports.push_back(rep);
+			candidates.push_back({reports.size() - 1, w});
+		}
+	}
+	return candidates;
+}
+
+SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const std::vector<std::string>& families,
+							   const TagDecoder& hard, const SoftTagDecoder& soft)
+{
+	SensorViewReads out{renderSensorView(m.xs, m.ys, m.zs, m.is, m.n, p.sensorView), {}};
+	if (out.view.gray.empty()) return out;
+	// The smallest tag a scan can show: a point on every cell of the family
+	// with the fewest cells across its border square.
+	const int fewestCells = borderCellsAcross(families).fewest;
+	const std::vector<Quad> quads =
+		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
+	out.reads = hard.decode(out.view.gray, &quads);
+	for (DecodedTag2D& d : soft.decode(out.view.gray, quads)) out.reads.push_back(std::move(d));
+	return out;
+}
+
+std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewReads& seen,
+											 const std::vector<uint32_t>& near, const PipelineParams& p,
+											 const DerivedLengths& len, std::vector<CandidateReport>& reports)
+{
+	std::vector<Candidate> candidates;
+	const CandidateFilterParams cf = filterParams(p);
+	for (const DecodedTag2D& d : seen.reads)
+	{
+		OrientedBox box;
+		if (!boxOfRead(seen.view, d, m.xs, m.ys, m.zs, near, len.candidateBand, box)) continue;
+		const bool again = std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
+			return (c.box.center - box.center).norm() < 0.25 * std::min(box.extent.x(), box.extent.y());
+		});
+		if (again) continue;
+		CandidateReport rep;
+		rep.center = box.center;
+		rep.extent = box.extent;
+		const std::optional<Verdict> why = rejectCandidate(box, len.candidateBand, len.planeNoise, cf);
+		rep.verdict = why.value_or(Verdict::Candidate);
+		reports.push_back(rep);
+		const TagFamilyInfo* family = findFamily(d.family);
+		const bool aprilTag = family && family->system == TagSystem::AprilTag && d.hamming >= 0;  // not a soft read
+		if (!why) candidates.push_back({reports.size() - 1, box, aprilTag});
+	}
+	return candidates;
+}
+
+}  // namespace tagmap::detail
