@@ -160,7 +160,9 @@ int runDetect(int argc, char** argv)
 			// from the rest): the input's fault, so the message names it.
 			try
 			{
-				return pipeline.detect(map, progress.callback(), !reportDir.empty());
+				// A simplemap's or rawlog's sensor positions: a read whose printed
+				// face none of them could see is a mirror image (front_side.h).
+				return pipeline.detect(map, load.localViewpoints(), progress.callback(), !reportDir.empty());
 			}
 			catch (const std::invalid_argument& e)
 			{

@@ -117,6 +117,40 @@ TEST(Scenes, MirrorPrintedTagOnAPillarIsNoTag)
 	const auto mirrored = std::count_if(without.tags.begin(), without.tags.end(),
 										[](const TagDetection& t) { return t.family == "tag36h11" && t.id == 200; });
 	EXPECT_EQ(mirrored, 1) << "the scene no longer shows the mirror read the check is for";
+
+	// Knowing where the stations stood changes nothing here: tag 5 is seen.
+	std::vector<Eigen::Vector3d> stations;
+	for (const sim::FrameData& f : r.sim.frames) stations.push_back(f.driftedPose.translation());
+	const Detections withStations = Pipeline().detect(r.sim.map, stations);
+	EXPECT_EQ(evaluateDetections(withStations.tags, r.sim.truthInMap).falsePositives(), 0);
+	EXPECT_EQ(withStations.tags.size(), 1u);
+}
+
+// The same pillar scanned from its west station only: nothing in the map
+// lies in front of the mirror read's face (the pillar's inside and far
+// side were never scanned), so a point cloud alone cannot tell and the
+// read is reported. Where the station's position is known (a simplemap or
+// rawlog; front_side.h, seenOnlyFromBehind) no line from that face reaches
+// it, while one from the sheet's back does: no tag.
+TEST(Scenes, MirrorPrintedTagScannedFromOneSideIsNoTagWhereTheStationIsKnown)
+{
+	sim::Scene scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/mirrored.yaml");
+	ASSERT_EQ(scene.runs.size(), 1u);
+	scene.runs[0].waypoints.resize(1);  // the west station, in front of the sheet
+	const sim::SimulationOutput s = sim::simulate(scene, {});
+	std::vector<Eigen::Vector3d> stations;
+	for (const sim::FrameData& f : s.frames) stations.push_back(f.driftedPose.translation());
+	ASSERT_FALSE(stations.empty());
+	const auto mirrorReads = [](const Detections& d) {
+		return std::count_if(d.tags.begin(), d.tags.end(),
+							 [](const TagDetection& t) { return t.family == "tag36h11" && t.id == 200; });
+	};
+	EXPECT_EQ(mirrorReads(Pipeline().detect(s.map)), 1) << "the points alone no longer show the one-sided case";
+	const Detections known = Pipeline().detect(s.map, stations);
+	EXPECT_EQ(mirrorReads(known), 0);
+	EXPECT_TRUE(known.tags.empty());
+	EXPECT_TRUE(std::any_of(known.candidates.begin(), known.candidates.end(),
+							[](const CandidateReport& c) { return c.verdict == Verdict::WrongSide; }));
 }
 
 TEST(Scenes, ParkingAllThreeTagsIncludingTheBlurredOne)

@@ -72,6 +72,17 @@ TEST(IoSimplemap, MergesKeyframesAtPoseTimesSensorPose)
 	float x, y, z;
 	map.getPoint(200, x, y, z);
 	EXPECT_GT(std::abs(x - expected[0].x) + std::abs(y - expected[0].y), 1.0f);
+	// Where the sensor stood for each observation used (the 2D scans are
+	// not): keyframe (+) sensor pose, in the file's frame and, less the
+	// origin, in the map's.
+	ASSERT_EQ(r.viewpoints.size(), 2u);
+	const std::vector<Eigen::Vector3d> inMap = r.localViewpoints();
+	for (size_t k = 0; k < 2; k++)
+	{
+		const CPose3D at = kKeyframes[k] + kSensor;
+		EXPECT_NEAR((r.viewpoints[k] - Eigen::Vector3d(at.x(), at.y(), at.z())).norm(), 0, 1e-9);
+		EXPECT_NEAR((inMap[k] + r.origin - r.viewpoints[k]).norm(), 0, 1e-9);
+	}
 }
 
 TEST(IoSimplemap, ReadsUncompressedArchive)

@@ -12,6 +12,7 @@
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
 #include "tagmap/code_in_points.h"
+#include "tagmap/front_side.h"
 #include <Eigen/Geometry>
 
 #include "tagmap/intensity_gradient.h"
@@ -1081,4 +1082,39 @@ TEST(SensorView, PointsNearAReadAreThoseWithinItsWidenedRectangle)
 	EXPECT_EQ(nearSeam.front(), 0u);
 	EXPECT_EQ(nearSeam.back(), 359u);
 	EXPECT_EQ(std::count_if(nearSeam.begin(), nearSeam.end(), [](uint32_t k) { return k > 300; }), 5);
+}
+
+// Lines of sight from a tag's sides to where the sensors stood (a wall at
+// x = 3, a tag on its face towards x < 3). A sheet whose printed face no
+// sensor could see, while one saw its back, is a mirror image; a face any
+// sensor could see is not judged by this rule.
+TEST(FrontSide, LinesOfSightToTheSensorsTellTheFaceFromTheBack)
+{
+	std::vector<float> xs, ys, zs;
+	for (double y = -2; y <= 2; y += 0.02)
+		for (double z = 0; z <= 3; z += 0.02) xs.push_back(3), ys.push_back(static_cast<float>(y)), zs.push_back(static_cast<float>(z));
+	const VoxelGrid grid(xs.data(), ys.data(), zs.data(), xs.size(), 0.05);
+	const auto tagFacing = [](double nx) {
+		TagDetection t;
+		t.size = 0.3;
+		// +z out of the printed face along (nx, 0, 0); x and y in the wall.
+		t.pose.linear() << 0, 0, nx, nx, 0, 0, 0, 1, 0;
+		t.pose.translation() = Eigen::Vector3d(3, 0, 1.4);
+		return t;
+	};
+	const TagDetection face = tagFacing(-1), mirror = tagFacing(1);
+	const Eigen::Vector3d before(0, 0.5, 1.3), behind(6, -0.5, 1.3);
+	const double clearance = 0.15;
+	EXPECT_FALSE(seenOnlyFromBehind(face, {before}, grid, clearance));
+	EXPECT_TRUE(seenOnlyFromBehind(mirror, {before}, grid, clearance));
+	// Sensors on both sides of the wall: either face could have been seen.
+	EXPECT_FALSE(seenOnlyFromBehind(mirror, {before, behind}, grid, clearance));
+	// Nothing known, nothing judged.
+	EXPECT_FALSE(seenOnlyFromBehind(mirror, {}, grid, clearance));
+	// A second wall at x = 1.5 hides the sensor at x = 0 from both sides of
+	// the tag: neither side was seen, and the rule stays out of it.
+	std::vector<float> x2 = xs, y2 = ys, z2 = zs;
+	for (size_t i = 0; i < xs.size(); i++) x2.push_back(1.5f), y2.push_back(ys[i]), z2.push_back(zs[i]);
+	const VoxelGrid walled(x2.data(), y2.data(), z2.data(), x2.size(), 0.05);
+	EXPECT_FALSE(seenOnlyFromBehind(mirror, {Eigen::Vector3d(0, 0, 1.4)}, walled, clearance));
 }

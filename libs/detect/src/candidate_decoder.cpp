@@ -42,11 +42,14 @@ struct CandidateOutcome
 class CandidateDecoder
 {
    public:
-	CandidateDecoder(const PipelineParams& p, const MapView& m, const OctreeGatherer& gatherer,
-					 const DerivedLengths& len, bool keepImages, const std::vector<std::string>& decodedFamilies)
+	CandidateDecoder(const PipelineParams& p, const MapView& m, const VoxelGrid& grid, const OctreeGatherer& gatherer,
+					 const std::vector<Eigen::Vector3d>& viewpoints, const DerivedLengths& len, bool keepImages,
+					 const std::vector<std::string>& decodedFamilies)
 		: p_(p),
 		  m_(m),
+		  grid_(grid),
 		  gatherer_(gatherer),
+		  viewpoints_(viewpoints),
 		  len_(len),
 		  keepImages_(keepImages),
 		  sizes_(filterParams(p)),
@@ -280,11 +283,15 @@ class CandidateDecoder
 						p_.supportPlane);
 	}
 
-	// The read's printed face looks into free space (front_side.h): the
-	// columns in front of and behind the tag, a few tag sizes deep.
+	// The read's printed face looks into free space (front_side.h): a
+	// sensor could see it, and the columns in front of and behind the tag,
+	// a few tag sizes deep, do not say otherwise.
 	bool facesFreeSpace(const TagDetection& t) const
 	{
 		if (!p_.frontSide.enabled) return true;
+		// Lines of sight start past the voxels of the sheet's own points:
+		// within the plane's noise of it, and up to a voxel diagonal beyond.
+		if (seenOnlyFromBehind(t, viewpoints_, grid_, len_.planeNoise + 2 * grid_.cellSize())) return false;
 		OrientedBox both;
 		both.center = t.position();
 		both.axes = t.pose.linear();
@@ -298,7 +305,9 @@ class CandidateDecoder
 
 	const PipelineParams& p_;
 	const MapView& m_;
+	const VoxelGrid& grid_;
 	const OctreeGatherer& gatherer_;
+	const std::vector<Eigen::Vector3d>& viewpoints_;  // where the sensors stood, if known
 	const DerivedLengths len_;
 	const bool keepImages_;
 	const CandidateFilterParams sizes_;
@@ -325,14 +334,15 @@ class CandidateDecoder
 
 }  // namespace
 
-std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapView& m, const OctreeGatherer& gatherer,
+std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapView& m, const VoxelGrid& grid,
+										   const OctreeGatherer& gatherer, const std::vector<Eigen::Vector3d>& viewpoints,
 										   const DerivedLengths& len, const std::vector<std::string>& decodedFamilies,
 										   bool keepImages, const std::vector<Candidate>& candidates,
 										   std::vector<CandidateReport>& reports, unsigned threads,
 										   const CountProgressFn& progress,
 										   const std::function<CandidateDecoders(unsigned worker)>& decodersFor)
 {
-	const CandidateDecoder decoder(p, m, gatherer, len, keepImages, decodedFamilies);
+	const CandidateDecoder decoder(p, m, grid, gatherer, viewpoints, len, keepImages, decodedFamilies);
 	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
 	std::atomic<size_t> finished{0};
 	parallelForWorkers(candidates.size(), threads, [&](unsigned worker, size_t b, size_t e) {

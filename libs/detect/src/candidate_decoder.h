@@ -3,6 +3,7 @@
 // the points, solve the pose. Private to tagmap_detect.
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "tagmap/pipeline.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
+#include "tagmap/voxel_grid.h"
 
 namespace tagmap::detail
 {
@@ -29,8 +31,10 @@ struct CandidateDecoders
  *  worker on its own decoders (`decodersFor(worker)`); each candidate's
  *  report (`reports[candidate.report]`) says what happened. Results are
  *  stored per candidate index, so the output is the same for any thread
- *  count. `progress`: candidates done. */
-std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapView& m, const OctreeGatherer& gatherer,
+ *  count. `progress`: candidates done. `viewpoints`: where the map's
+ *  sensors stood, if known (front_side.h: seenOnlyFromBehind(), on `grid`). */
+std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapView& m, const VoxelGrid& grid,
+										   const OctreeGatherer& gatherer, const std::vector<Eigen::Vector3d>& viewpoints,
 										   const DerivedLengths& len, const std::vector<std::string>& decodedFamilies,
 										   bool keepImages, const std::vector<Candidate>& candidates,
 										   std::vector<CandidateReport>& reports, unsigned threads,

@@ -5,6 +5,51 @@
 
 namespace tagmap
 {
+namespace
+{
+/** A line of sight ends this far short of its viewpoint: the sensor's own
+ *  housing and mount may have left points around it. */
+constexpr double kSensorClearance = 0.3;
+
+// Whether the segment a -> b crosses no occupied voxel: sampled every
+// quarter voxel, so a voxel it crosses for more than that is met (a wall's
+// sheet of voxels is at least a voxel deep along any line through it).
+bool lineIsClear(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+	const Eigen::Vector3d d = b - a;
+	const double length = d.norm(), step = 0.25 * grid.cellSize();
+	VoxelKey last{};
+	bool first = true;
+	for (double s = 0; s < length; s += step)
+	{
+		const VoxelKey k = grid.keyOf((a + d * (s / length)).cast<float>());
+		if (!first && k == last) continue;
+		first = false;
+		last = k;
+		if (grid.find(k) >= 0) return false;
+	}
+	return true;
+}
+
+// Whether a line from `from` to one of the viewpoints on the side `normal`
+// points to is clear; the nearest are tried first, and the first clear one
+// answers.
+bool seenFrom(const Eigen::Vector3d& from, const Eigen::Vector3d& normal, const std::vector<Eigen::Vector3d>& viewpoints,
+			  const VoxelGrid& grid)
+{
+	std::vector<std::pair<double, size_t>> onSide;
+	for (size_t k = 0; k < viewpoints.size(); k++)
+	{
+		const Eigen::Vector3d to = viewpoints[k] - from;
+		if (to.dot(normal) > 0 && to.norm() > kSensorClearance) onSide.emplace_back(to.norm(), k);
+	}
+	std::sort(onSide.begin(), onSide.end());
+	for (const auto& [distance, k] : onSide)
+		if (lineIsClear(grid, from, from + (viewpoints[k] - from) * (1 - kSensorClearance / distance))) return true;
+	return false;
+}
+}  // namespace
+
 FrontSideEvidence measureFrontSide(const TagDetection& t, const std::vector<uint32_t>& around, const float* xs,
 								   const float* ys, const float* zs, double surface, const FrontSideParams& p)
 {
@@ -33,6 +78,14 @@ FrontSideEvidence measureFrontSide(const TagDetection& t, const std::vector<uint
 bool printedFaceLooksIntoSolid(const FrontSideEvidence& e, const FrontSideParams& p)
 {
 	return p.enabled && e.blockedInFront >= p.blockedFraction && e.blockedBehind <= p.freeFraction;
+}
+
+bool seenOnlyFromBehind(const TagDetection& t, const std::vector<Eigen::Vector3d>& viewpoints, const VoxelGrid& grid,
+						double clearance)
+{
+	if (viewpoints.empty()) return false;
+	const Eigen::Vector3d c = t.position(), n = t.pose.linear().col(2);
+	return !seenFrom(c + clearance * n, n, viewpoints, grid) && seenFrom(c - clearance * n, -n, viewpoints, grid);
 }
 
 }  // namespace tagmap

@@ -154,6 +154,12 @@ const TagDecoder& Pipeline::viewDecoder() const
 
 Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress, bool keepImages) const
 {
+	return detect(map, {}, progress, keepImages);
+}
+
+Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const std::vector<Eigen::Vector3d>& viewpoints,
+							const ProgressFn& progress, bool keepImages) const
+{
 	const auto tStart = Clock::now();
 	Detections out;
 	const MapView whole(map);
@@ -204,8 +210,8 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const Progres
 		return std::make_unique<const OctreeGatherer>(grid, len.octreeLeaf, params_.gather, threads);
 	});
 	std::vector<TagDetection> found = stage.run("decode", candidates.size(), [&](const CountProgressFn& count) {
-		return decodeCandidates(params_, m, *gatherer, len, decodedFamilies_, keepImages, candidates, out.candidates,
-								threads, count, [this](unsigned worker) {
+		return decodeCandidates(params_, m, grid, *gatherer, viewpoints, len, decodedFamilies_, keepImages, candidates,
+								out.candidates, threads, count, [this](unsigned worker) {
 									const WorkerDecoders d = decodersFor(worker);
 									return CandidateDecoders{d.hard, d.soft};
 								});

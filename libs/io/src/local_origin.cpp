@@ -9,6 +9,13 @@
 
 namespace tagmap::io
 {
+std::vector<Eigen::Vector3d> LoadReport::localViewpoints() const
+{
+	std::vector<Eigen::Vector3d> local = viewpoints;
+	for (Eigen::Vector3d& v : local) v -= origin;
+	return local;
+}
+
 Eigen::Vector3d chooseLocalOrigin(std::vector<Eigen::Vector3d> points)
 {
 	Eigen::Vector3d origin = Eigen::Vector3d::Zero();

@@ -124,6 +124,13 @@ bool appendObservationToMap(const mrpt::obs::CObservation& obs, const mrpt::pose
 	else if (const auto* rgbd = dynamic_cast<const mrpt::obs::CObservation3DRangeScan*>(&obs))
 		used = append3DRangeScan(*rgbd, robotPose, out, report);
 	++(used ? report.observationsUsed : report.observationsSkipped);
+	if (used)
+	{
+		mrpt::poses::CPose3D sensorPose;
+		obs.getSensorPose(sensorPose);
+		const mrpt::poses::CPose3D at = robotPose + sensorPose;
+		report.viewpoints.emplace_back(at.x(), at.y(), at.z());
+	}
 	return used;
 }
 

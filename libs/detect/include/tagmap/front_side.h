@@ -13,12 +13,19 @@
 // a clear case decides (the front mostly blocked, the back almost all
 // free); a one-sided wall scan (nothing behind, nothing in front) or
 // clutter on both sides leaves the read as it is.
+//
+// Where the map says where its sensors stood (a .simplemap's or .rawlog's
+// observations), the lines of sight decide that one-sided case too: a LiDAR
+// measures a tag along straight, unobstructed lines from its position, so
+// the printed face must see one of them (seenOnlyFromBehind()).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
 #include "tagmap/tag_detection.h"
+#include "tagmap/voxel_grid.h"
 
 namespace tagmap
 {
@@ -55,5 +62,16 @@ FrontSideEvidence measureFrontSide(const TagDetection& t, const std::vector<uint
 /** True when the evidence says the read's printed face looks into a solid
  *  body with free space behind it (the read is the sheet's mirror image). */
 bool printedFaceLooksIntoSolid(const FrontSideEvidence& e, const FrontSideParams& p);
+
+/** True when the sensors saw only the back of `t`'s sheet: no straight line
+ *  from just off its printed face (+z) to a viewpoint on that side is clear
+ *  of the map's occupied voxels (`grid`), while one from just off its back
+ *  to a viewpoint on the other side is. The read is then the mirror image of
+ *  what is printed: a mirror-printed sheet on a wall scanned from one side,
+ *  a tag seen through glass. `viewpoints`: where the sensors stood, in the
+ *  map frame; none, and nothing is known (false). `clearance`: how far off
+ *  the sheet the lines start, past the voxels of its own points. */
+bool seenOnlyFromBehind(const TagDetection& t, const std::vector<Eigen::Vector3d>& viewpoints, const VoxelGrid& grid,
+						double clearance);
 
 }  // namespace tagmap

@@ -10,6 +10,7 @@
 #include <mrpt/containers/yaml.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 
+#include <Eigen/Core>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -74,6 +75,12 @@ class Pipeline
 	 *  Detections::candidates (for --report); costs memory on big maps. */
 	Detections detect(const mrpt::maps::CPointsMapXYZI& map, const ProgressFn& progress = {},
 					  bool keepImages = false) const;
+	/** The same, knowing where the map's sensors stood (map frame: a
+	 *  simplemap's or rawlog's observations, io::LoadReport::viewpoints): a
+	 *  read whose printed face none of them could see is a mirror image
+	 *  (front_side.h), even on a wall scanned from one side only. */
+	Detections detect(const mrpt::maps::CPointsMapXYZI& map, const std::vector<Eigen::Vector3d>& viewpoints,
+					  const ProgressFn& progress = {}, bool keepImages = false) const;
 
    private:
 	PipelineParams params_;

@@ -57,6 +57,11 @@ struct LoadReport
 	// observations passed over because they carry no usable intensity.
 	size_t observationsUsed = 0;
 	size_t observationsSkipped = 0;
+	/** Where the sensor stood for each observation used (robot pose (+)
+	 *  sensor pose), in the file's frame like `origin`: subtract it for the
+	 *  map's local frame (localViewpoints()). Empty for point-cloud files. */
+	std::vector<Eigen::Vector3d> viewpoints;
+	std::vector<Eigen::Vector3d> localViewpoints() const;
 	/** Set by the caller to hear how far a long read is: called with the
 	 *  points read so far, every kProgressPoints points, on the calling thread. */
 	std::function<void(size_t pointsSoFar)> progress;
