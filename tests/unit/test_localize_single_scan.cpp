@@ -9,10 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
+#include "tagmap/localize/observe_rawlog.h"
+#include "tagmap/localize/rawlog_visit.h"
 #include "tagmap/localize/scan_tags.h"
 #include "tagmap/localize/tag_relocalization.h"
 #include "tagmap/sim/scene_loader.h"
+#include "tagmap/sim/sim_rawlog.h"
 #include "tagmap/sim/sim_outputs.h"
 #include "tagmap/sim/simulate.h"
 
@@ -134,4 +138,41 @@ TEST(LocalizeSingleScanSensorView, OneScanIsReadFromItsViewAWindowThroughTheMapP
 	EXPECT_TRUE(localize::singleScanPipelineParams().sensorView.enabled);
 	EXPECT_TRUE(localize::singleScanPipelineParams(1).sensorView.enabled);
 	EXPECT_FALSE(localize::singleScanPipelineParams(3).sensorView.enabled);
+}
+
+// A mirror-printed sheet on a pillar, scanned from its west station only
+// (share/scenes/mirrored.yaml): its mirror image reads as tag36h11 200 with
+// the printed face into the pillar, which nothing in the scan contradicts.
+// observe knows where the sensor stood (the scan's origin): no line from
+// that face reaches it (front_side.h), so even its map path, which decodes
+// both sides of every quad, reports no tag.
+TEST(LocalizeSingleScan, ObserveReportsNoMirrorImageOfASheetScannedFromTheFront)
+{
+	sim::Scene scene = sim::loadScene(TAGMAP_SOURCE_DIR "/share/scenes/mirrored.yaml");
+	ASSERT_EQ(scene.runs.size(), 1u);
+	scene.runs[0].waypoints.resize(1);  // the west station, in front of the sheet
+	const sim::SimulationOutput s = sim::simulate(scene, {});
+	ASSERT_EQ(s.frames.size(), 1u);
+	PipelineParams params = localize::singleScanPipelineParams(1);
+	params.sensorView.enabled = false;
+	const Pipeline pipeline(params);
+	// The scan alone, as the pipeline saw it before it knew the sensor.
+	const mrpt::obs::CRawlog rawlog = sim::toRawlog(s);
+	std::optional<mrpt::maps::CPointsMapXYZI> scan;
+	localize::visitRawlog(rawlog, {{},
+								   [&](const mrpt::obs::CSensoryFrame& sf) {
+									   for (const auto& o : sf)
+										   if (!scan) scan = localize::scanInSensorFrame(*o);
+								   },
+								   [&](const mrpt::obs::CObservation::Ptr& o) {
+									   if (!scan) scan = localize::scanInSensorFrame(*o);
+								   }});
+	ASSERT_TRUE(scan.has_value());
+	const Detections alone = pipeline.detect(*scan);
+	EXPECT_EQ(std::count_if(alone.tags.begin(), alone.tags.end(), [](const TagDetection& t) { return t.id == 200; }), 1)
+		<< "the scan alone no longer shows the mirror read";
+	localize::ObserveReport report;
+	localize::observeRawlog(rawlog, pipeline, {}, &report);
+	EXPECT_EQ(report.scans, 1u);
+	EXPECT_EQ(report.tagsSeen, 0u);
 }

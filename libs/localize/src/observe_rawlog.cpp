@@ -50,14 +50,17 @@ class Observer
 		mrpt::poses::CPose3D sensorPose;
 		scanObs.getSensorPose(sensorPose);
 		std::vector<size_t> scanStarts;
-		const mrpt::maps::CPointsMapXYZI merged = mergeWindow(std::move(*scan), sensorPose, scanStarts);
+		std::vector<Eigen::Vector3d> viewpoints;
+		const mrpt::maps::CPointsMapXYZI merged = mergeWindow(std::move(*scan), sensorPose, scanStarts, viewpoints);
 		pointsDetected_ += merged.size();
 
 		auto tags = obs::CObservationTagPoses::Create();
 		tags->sensorLabel = scanObs.sensorLabel + params_.tagsLabelSuffix;
 		tags->timestamp = scanObs.timestamp;
 		tags->sensorPose = sensorPose;
-		Detections found = pipeline_.detect(merged);
+		// Where each merged scan's sensor stood: a read whose printed face
+		// none of them could see is a mirror image (front_side.h).
+		Detections found = pipeline_.detect(merged, viewpoints);
 		// Merged scans were placed by drifting odometry: the tag is as
 		// uncertain as they disagree (window_disagreement.h).
 		for (TagDetection& t : found.tags)
@@ -87,18 +90,22 @@ class Observer
 	};
 
 	/** This scan and the window's earlier ones, in this scan's sensor frame;
-	 *  `scanStarts` gets the index of each one's first point. */
+	 *  `scanStarts` gets the index of each one's first point, `viewpoints`
+	 *  each one's sensor position (this scan's: the origin). */
 	mrpt::maps::CPointsMapXYZI mergeWindow(mrpt::maps::CPointsMapXYZI scan, const mrpt::poses::CPose3D& sensorPose,
-										   std::vector<size_t>& scanStarts)
+										   std::vector<size_t>& scanStarts, std::vector<Eigen::Vector3d>& viewpoints)
 	{
 		scanStarts = {0};
+		viewpoints = {Eigen::Vector3d::Zero()};
 		if (params_.window <= 1) return scan;
 		const mrpt::poses::CPose3D sensorNow = mrpt::poses::CPose3D(odometry_.pose()) + sensorPose;
 		mrpt::maps::CPointsMapXYZI merged = scan;
 		for (const PastScan& past : window_)
 		{
 			scanStarts.push_back(merged.size());
-			merged.insertAnotherMap(&past.points, past.sensorInOdometry - sensorNow);
+			const mrpt::poses::CPose3D inThisFrame = past.sensorInOdometry - sensorNow;
+			merged.insertAnotherMap(&past.points, inThisFrame);
+			viewpoints.emplace_back(inThisFrame.x(), inThisFrame.y(), inThisFrame.z());
 		}
 		window_.push_back({sensorNow, std::move(scan)});
 		if (window_.size() >= params_.window) window_.pop_front();
