@@ -146,6 +146,9 @@ int runDetect(int argc, char** argv)
 		// Nothing usable is the input's fault, and an empty result would
 		// read as "no tags here": fail, saying what happened to the points.
 		if (load.pointsKept == 0) throw InputError(input, "", "no usable point: " + skippedSummary(load));
+		// A simplemap's or rawlog's sensor positions: a read whose printed
+		// face none of them could see is a mirror image (front_side.h).
+		used.viewpoints = load.localViewpoints();
 		if (!quiet)
 		{
 			std::fprintf(stderr, "tagmap: read %zu points from %s (%s, intensity from '%s'), local origin %.3f %.3f %.3f",
@@ -160,9 +163,7 @@ int runDetect(int argc, char** argv)
 			// from the rest): the input's fault, so the message names it.
 			try
 			{
-				// A simplemap's or rawlog's sensor positions: a read whose printed
-				// face none of them could see is a mirror image (front_side.h).
-				return pipeline.detect(map, load.localViewpoints(), progress.callback(), !reportDir.empty());
+				return pipeline.detect(map, used.viewpoints, progress.callback(), !reportDir.empty());
 			}
 			catch (const std::invalid_argument& e)
 			{

@@ -29,12 +29,12 @@ namespace
 {
 // The detection settings used travel with the map, so re-running detection
 // inside an MRPT app (CTagMap::tags() after new insertions) uses them.
-maps::CTagMap::Ptr makeTagMap(const PipelineParams& params, const mrpt::maps::CPointsMapXYZI& map,
+maps::CTagMap::Ptr makeTagMap(const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,
 							  const std::vector<TagDetection>& tags)
 {
 	auto m = maps::CTagMap::Create();
-	m->detectionParams = params;
-	m->setPoints(map);
+	m->detectionParams = used.params;
+	m->setPoints(map, used.viewpoints);
 	m->setTags(tags);  // after setPoints: these tags are current, no re-detection
 	return m;
 }
@@ -73,7 +73,7 @@ void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mr
 	}
 	// A .tagmap is one serialized CTagMap, which is also a valid one-entry
 	// rawlog: `RawLogViewer -l plugin F.tagmap` shows it (docs/MRPT.md).
-	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(used.params, map, tags));
+	if (args.has("--tagmap")) mrpt_bridge::writeSerializableGz(args.get("--tagmap"), *makeTagMap(used, map, tags));
 }
 
 void writeMrptOutputs(const cli::Args& args, const DetectionUsed& used, const mrpt::maps::CPointsMapXYZI& map,

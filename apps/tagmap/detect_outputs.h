@@ -9,6 +9,7 @@
 
 #include <mrpt/maps/CPointsMapXYZI.h>
 
+#include <Eigen/Core>
 #include <set>
 #include <string>
 #include <vector>
@@ -37,6 +38,7 @@ struct DetectionUsed
 {
 	DetectionChoices choices;
 	PipelineParams params;
+	std::vector<Eigen::Vector3d> viewpoints;  // where the sensors stood (local frame), if the input said
 };
 
 /** Writes every requested output (paths from `args`). `map` and the

@@ -1,9 +1,10 @@
 // CTagMap serialization round trip (write -> read equal), the registry entry
-// the plugin adds, and the asString table.
+// the plugin adds, the asString table, and observations inserted.
 #include <gtest/gtest.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/math/matrix_serialization.h>
+#include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -50,7 +51,8 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	m.likelihoodOptions.mapTagStdRotationDeg = 0.7;
 	m.likelihoodOptions.scoreBeaconRanges = false;
 	m.visualOptions.showPoints = false;
-	m.setPoints(mrpt_test::syntheticWallMap(tags));
+	const std::vector<Eigen::Vector3d> stations = {Eigen::Vector3d(0.5, -1.25, 1.5), Eigen::Vector3d(-3, 2, 0.25)};
+	m.setPoints(mrpt_test::syntheticWallMap(tags), stations);
 	m.setTags(tags);
 
 	mrpt::io::CMemoryStream buf;
@@ -71,6 +73,7 @@ TEST(MrptTagMap, SerializationRoundTrip)
 	EXPECT_EQ(back->likelihoodOptions.mapTagStdRotationDeg, 0.7);
 	EXPECT_FALSE(back->likelihoodOptions.scoreBeaconRanges);
 	EXPECT_FALSE(back->visualOptions.showPoints);
+	EXPECT_EQ(back->viewpoints(), stations);  // where the sensors stood (version 5)
 }
 
 TEST(MrptTagMap, AsStringIsATable)
@@ -170,4 +173,33 @@ TEST(MrptTagPoses, ReadsVersion0AndRoundTrips)
 	auto back = a2.ReadObject<obs::CObservationTagPoses>();
 	ASSERT_TRUE(back);
 	expectSameTags(back->tags, o.tags);
+}
+
+// Observations inserted as an MRPT app would (a CMultiMetricMap built from a
+// simplemap or rawlog): their points join the map and each one's sensor
+// position (robot pose (+) sensor pose) is kept for detection.
+TEST(MrptTagMap, InsertedObservationsKeepWhereTheSensorStood)
+{
+	const mrpt::poses::CPose3D sensor(0.2, 0, 1.1, 0.5, 0, 0);
+	const mrpt::poses::CPose3D robots[2] = {mrpt::poses::CPose3D(0, 0, 0, 0, 0, 0),
+											mrpt::poses::CPose3D(4, -1, 0, 1.0, 0, 0)};
+	maps::CTagMap m;
+	for (const mrpt::poses::CPose3D& robot : robots)
+	{
+		auto cloud = mrpt::maps::CPointsMapXYZI::Create();
+		for (int k = 0; k < 10; k++) cloud->insertPointRGB(3.0f + 0.1f * k, 0.5f, 0.2f, 0.5f, 0, 0);
+		auto obs = mrpt::obs::CObservationPointCloud::Create();
+		obs->pointcloud = cloud;
+		obs->sensorPose = sensor;
+		EXPECT_TRUE(m.insertObservation(*obs, robot));
+	}
+	EXPECT_EQ(m.points().size(), 20u);
+	ASSERT_EQ(m.viewpoints().size(), 2u);
+	for (size_t k = 0; k < 2; k++)
+	{
+		const mrpt::poses::CPose3D at = robots[k] + sensor;
+		EXPECT_NEAR((m.viewpoints()[k] - Eigen::Vector3d(at.x(), at.y(), at.z())).norm(), 0, 1e-9);
+	}
+	m.clear();
+	EXPECT_TRUE(m.viewpoints().empty());
 }

@@ -35,9 +35,10 @@ void CTagMap::setTags(std::vector<TagDetection> tags)
 	m_tagsStale = false;
 }
 
-void CTagMap::setPoints(const mrpt::maps::CPointsMapXYZI& points)
+void CTagMap::setPoints(const mrpt::maps::CPointsMapXYZI& points, const std::vector<Eigen::Vector3d>& viewpoints)
 {
 	m_points = points;
+	m_viewpoints = viewpoints;
 	m_tagsStale = !m_points.empty();
 }
 
@@ -46,6 +47,7 @@ bool CTagMap::isEmpty() const { return m_tags.empty() && m_points.empty(); }
 void CTagMap::internal_clear()
 {
 	m_points.clear();
+	m_viewpoints.clear();
 	m_tags.clear();
 	m_beaconIds.clear();
 	m_tagsStale = false;
@@ -67,7 +69,7 @@ void CTagMap::saveMetricMapRepresentationToFile(const std::string& filNamePrefix
 // file path) instead of the settings.
 // Version 0 (tagmap 0.1): as 1, with the tags as a bare count and layout-0
 // tags (the layout tag_detection_archive.h took over).
-uint8_t CTagMap::serializeGetVersion() const { return 4; }
+uint8_t CTagMap::serializeGetVersion() const { return 5; }
 
 namespace
 {
@@ -106,11 +108,13 @@ void CTagMap::serializeTo(mrpt::serialization::CArchive& out) const
 	out << genericMapParams;
 	writeTagDetections(out, m_tags);
 	out << m_points << m_tagsStale;
+	out << static_cast<uint32_t>(m_viewpoints.size());
+	for (const Eigen::Vector3d& v : m_viewpoints) out << v.x() << v.y() << v.z();
 }
 
 void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 {
-	if (version > 4) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+	if (version > 5) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
 	if (version >= 2)
 	{
 		std::string yaml;
@@ -142,6 +146,18 @@ void CTagMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
 		m_tags = readTagDetections(in);
 	m_beaconIds.clear();
 	in >> m_points >> m_tagsStale;
+	m_viewpoints.clear();
+	if (version >= 5)
+	{
+		uint32_t n = 0;
+		in >> n;
+		for (uint32_t k = 0; k < n; k++)
+		{
+			double x = 0, y = 0, z = 0;
+			in >> x >> y >> z;
+			m_viewpoints.emplace_back(x, y, z);
+		}
+	}
 }
 
 }  // namespace tagmap::maps

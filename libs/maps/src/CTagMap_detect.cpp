@@ -7,7 +7,7 @@ namespace tagmap::maps
 {
 void CTagMap::detectTags() const
 {
-	m_tags = Pipeline(detectionParams).detect(m_points).tags;
+	m_tags = Pipeline(detectionParams).detect(m_points, m_viewpoints).tags;
 	m_beaconIds.clear();
 	m_tagsStale = false;
 }

@@ -13,6 +13,7 @@ bool CTagMap::internal_insertObservation(const mrpt::obs::CObservation& obs,
 {
 	io::LoadReport report;
 	if (!io::appendObservationToMap(obs, robotPose.value_or(mrpt::poses::CPose3D()), m_points, report)) return false;
+	m_viewpoints.insert(m_viewpoints.end(), report.viewpoints.begin(), report.viewpoints.end());
 	m_tagsStale = true;
 	return true;
 }

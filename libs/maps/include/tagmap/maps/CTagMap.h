@@ -18,6 +18,7 @@
 #include <mrpt/maps/CMetricMap.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "tagmap/maps/tag_map_options.h"
@@ -50,7 +51,11 @@ class CTagMap : public mrpt::maps::CMetricMap
 
 	/** Points accumulated by insertObservation(), in the map frame. */
 	const mrpt::maps::CPointsMapXYZI& points() const { return m_points; }
-	void setPoints(const mrpt::maps::CPointsMapXYZI& points);
+	/** Where the sensor stood for each observation inserted (map frame):
+	 *  detection rejects a read whose printed face none of them could see
+	 *  (front_side.h), as `tagmap detect` does on a simplemap or rawlog. */
+	const std::vector<Eigen::Vector3d>& viewpoints() const { return m_viewpoints; }
+	void setPoints(const mrpt::maps::CPointsMapXYZI& points, const std::vector<Eigen::Vector3d>& viewpoints = {});
 
 	/** Runs detection on the accumulated points now. */
 	void detectTags() const;
@@ -73,6 +78,7 @@ class CTagMap : public mrpt::maps::CMetricMap
 
    private:
 	mrpt::maps::CPointsMapXYZI m_points;
+	std::vector<Eigen::Vector3d> m_viewpoints;
 	// Detection is lazy, so a const map can still bring its tags up to date.
 	mutable std::vector<TagDetection> m_tags;
 	mutable bool m_tagsStale = false;
