@@ -155,6 +155,8 @@ int runDetect(int argc, char** argv)
 						 load.pointsKept, input.c_str(), load.format.c_str(), load.intensityField.c_str(), origin.x(),
 						 origin.y(), origin.z());
 			if (load.nonFiniteSkipped + load.outOfRangeSkipped) std::fprintf(stderr, "; %s", skippedSummary(load).c_str());
+			// Said, so a user knows the sensors' lines of sight are judged.
+			if (!used.viewpoints.empty()) std::fprintf(stderr, "; %zu sensor positions", used.viewpoints.size());
 			std::fprintf(stderr, "\n");
 		}
 		const Pipeline pipeline(params);
