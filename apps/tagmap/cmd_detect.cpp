@@ -14,6 +14,7 @@
 #include "tagmap/errors.h"
 #include "tagmap/local_frame.h"
 #include "tagmap/io/point_cloud_io.h"
+#include "tagmap/localize/trajectory_tum.h"
 #include "tagmap/pipeline.h"
 #include "tagmap/report/progress_printer.h"
 #include "tagmap/report/report_writer.h"
@@ -47,7 +48,11 @@ std::string usage()
 		   "  --rawlog F         RawLogViewer file: the map and the tags as a CObservation3DScene\n"
 		   "  --3dscene F        SceneViewer3D file: the map coloured by intensity, the tags drawn\n"
 		   "  --origin X,Y,Z     local origin to subtract from the file's coordinates (default: the\n"
-		   "                     map's median rounded to metres, 0 on axes within 1 km of 0)\n" +
+		   "                     map's median rounded to metres, 0 on axes within 1 km of 0)\n"
+		   "  --viewpoints TRAJ  the sensor poses the map was built from, as TUM lines (t x y z qx qy\n"
+		   "                     qz qw, the file's frame: e.g. a SLAM system's trajectory): a read\n"
+		   "                     whose printed face none of them could see is rejected (a .simplemap\n"
+		   "                     or .rawlog input brings its own; default: none for point clouds)\n" +
 		   pipelineOptionsHelp() +
 		   "  --quiet            print nothing but errors (default: progress and a table of tags)\n"
 		   "  --verbose          also print per-stage timings and counts\n"
@@ -65,6 +70,16 @@ std::string usage()
 		   "Points more than 1e7 m from the origin or not finite are skipped (counted); if\n"
 		   "none is left, detect fails.\n"
 		   "LAZ: decompress first (laszip, PDAL).\n";
+}
+
+// The sensor positions of a TUM trajectory (the file's frame). An empty one
+// is a mistake, not "no viewpoint".
+std::vector<Eigen::Vector3d> trajectoryPositions(const std::string& path)
+{
+	std::vector<Eigen::Vector3d> positions;
+	for (const localize::StampedPose& p : localize::readTum(path)) positions.push_back(p.pose.translation());
+	if (positions.empty()) throw InputError(path, "", "no pose in the trajectory (TUM lines: t x y z qx qy qz qw)");
+	return positions;
 }
 
 std::string skippedSummary(const io::LoadReport& load)
@@ -111,7 +126,7 @@ int runDetect(int argc, char** argv)
 {
 	return cli::runCommand("detect", [&] {
 		const cli::Args args =
-			cli::parse(argc, argv, 1, with(with(pipelineOptions(), mrptOutputOptions()), {"--json", "--report", "--origin"}),
+			cli::parse(argc, argv, 1, with(with(pipelineOptions(), mrptOutputOptions()), {"--json", "--report", "--origin", "--viewpoints"}),
 					   {"--quiet", "--verbose", "--help"});
 		if (args.has("--help"))
 		{
@@ -131,6 +146,9 @@ int runDetect(int argc, char** argv)
 		checkOutputWritable(jsonPath);
 		if (!reportDir.empty()) report::checkReportDir(reportDir);
 		checkMrptOutputs(args);
+		// Read before the map, so a bad trajectory fails at once.
+		const std::vector<Eigen::Vector3d> trajectory =
+			args.has("--viewpoints") ? trajectoryPositions(args.get("--viewpoints")) : std::vector<Eigen::Vector3d>{};
 
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("reading", 0, 0);
@@ -149,6 +167,7 @@ int runDetect(int argc, char** argv)
 		// A simplemap's or rawlog's sensor positions: a read whose printed
 		// face none of them could see is a mirror image (front_side.h).
 		used.viewpoints = load.localViewpoints();
+		for (const Eigen::Vector3d& p : trajectory) used.viewpoints.push_back(p - origin);
 		if (!quiet)
 		{
 			std::fprintf(stderr, "tagmap: read %zu points from %s (%s, intensity from '%s'), local origin %.3f %.3f %.3f",

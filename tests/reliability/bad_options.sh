@@ -38,6 +38,14 @@ CASE=tag-size-text
 detect_with_bad --tag-size big -- "--tag-size: 'big' is not a number"
 CASE=tag-size-nan
 detect_with_bad --tag-size nan -- "--tag-size"
+CASE=viewpoints-missing
+detect_with_bad --viewpoints "$C/nowhere.tum" -- "nowhere\.tum: cannot open"
+CASE=viewpoints-empty
+printf '# no pose\n' >"$C/empty.tum"
+detect_with_bad --viewpoints "$C/empty.tum" -- "empty\.tum: no pose"
+CASE=viewpoints-garbage
+printf '0 1 2 x\n' >"$C/bad.tum"
+detect_with_bad --viewpoints "$C/bad.tum" -- "bad\.tum: line 1"
 CASE=tag-size-absurd
 detect_with_bad --tag-size 1e30 -- "--tag-size must be a positive length in metres, at most 10"
 CASE=threads-zero
