@@ -18,13 +18,12 @@ bool lineIsClear(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::V
 {
 	const Eigen::Vector3d d = b - a;
 	const double length = d.norm(), step = 0.25 * grid.cellSize();
-	VoxelKey last{};
-	bool first = true;
-	for (double s = 0; s < length; s += step)
+	VoxelKey last = grid.keyOf(a.cast<float>());
+	if (grid.find(last) >= 0) return false;
+	for (double s = step; s < length; s += step)
 	{
 		const VoxelKey k = grid.keyOf((a + d * (s / length)).cast<float>());
-		if (!first && k == last) continue;
-		first = false;
+		if (k == last) continue;
 		last = k;
 		if (grid.find(k) >= 0) return false;
 	}

@@ -136,7 +136,7 @@ Pipeline::Pipeline(PipelineParams params) : params_(std::move(params))
 	decodedFamilies_ = acceptableFamilies(familiesAsked(params_), readOrientations(params_), params_.evidence);
 }
 
-Pipeline::WorkerDecoders Pipeline::decodersFor(unsigned worker) const
+CandidateDecoders Pipeline::decodersFor(unsigned worker) const
 {
 	return {perWorker(decoders_, decodersMutex_, worker, decodedFamilies_, params_.decoder),
 			perWorker(softDecoders_, decodersMutex_, worker, decodedFamilies_, params_.softDecoder)};
@@ -211,10 +211,7 @@ Detections Pipeline::detect(const mrpt::maps::CPointsMapXYZI& map, const std::ve
 	});
 	std::vector<TagDetection> found = stage.run("decode", candidates.size(), [&](const CountProgressFn& count) {
 		return decodeCandidates(params_, m, grid, *gatherer, viewpoints, len, decodedFamilies_, keepImages, candidates,
-								out.candidates, threads, count, [this](unsigned worker) {
-									const WorkerDecoders d = decodersFor(worker);
-									return CandidateDecoders{d.hard, d.soft};
-								});
+								out.candidates, threads, count, [this](unsigned worker) { return decodersFor(worker); });
 	});
 	out.tags = stage.run("merge", found.size(), [&] { return mergeDetections(std::move(found), params_.merge); });
 	out.totalSeconds = std::chrono::duration<double>(Clock::now() - tStart).count();

@@ -61,6 +61,11 @@ struct Detections
 	double surfaceNoise = 0;  // metres, median plane-fit RMS of neighbourhoods
 };
 
+namespace detail
+{
+struct CandidateDecoders;  // a worker's decoders (candidate_decoder.h, private)
+}
+
 /** Progress callback: stage name, items done, items total. */
 using ProgressFn = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
@@ -93,12 +98,7 @@ class Pipeline
 	mutable std::mutex decodersMutex_;
 	mutable std::vector<std::unique_ptr<SoftTagDecoder>> softDecoders_;
 	mutable std::vector<std::unique_ptr<TagDecoder>> viewDecoders_;  // one, unmirrored (sensor_view.h)
-	struct WorkerDecoders
-	{
-		const TagDecoder& hard;
-		const SoftTagDecoder& soft;
-	};
-	WorkerDecoders decodersFor(unsigned worker) const;
+	detail::CandidateDecoders decodersFor(unsigned worker) const;
 	const TagDecoder& viewDecoder() const;  // reads a scan's sensor view (sensor_view.h)
 };
 
