@@ -21,7 +21,7 @@ namespace
 {
 const char* kUsage =
 	"Usage: tagmap observe IN.rawlog OUT.rawlog [--family F] [--tag-size S] [--config FILE]\n"
-	"                      [--window N] [--sensor-view | --map-path] [--threads N] [--quiet]\n"
+	"                      [--window N [--max-window M]] [--sensor-view | --map-path] [--threads N] [--quiet]\n"
 	"Detects the tags in every LiDAR scan of IN (sensor frame) and writes OUT: IN with,\n"
 	"next to each scan, a CObservationBeaconRanges (range to each tag centre, beacon IDs\n"
 	"as in docs/MRPT.md) and a tagmap::obs::CObservationTagPoses (T_sensor_tag + 6x6\n"
@@ -31,6 +31,9 @@ const char* kUsage =
 	"  --window N       detect on each scan merged with the N-1 scans before it, placed by the\n"
 	"                   rawlog's odometry (default 1: every scan alone). For short frames too\n"
 	"                   sparse to decode a tag (a 0.1 s Livox frame): e.g. 3-5 (docs/LOCALIZATION.md)\n"
+	"  --max-window M   a scan whose window of N shows no tag is detected again merged with up\n"
+	"                   to M-1 scans before it: the frames between tags get a sighting with the\n"
+	"                   longer window's larger covariance (M > N >= 2; default: no second try)\n"
 	"  --sensor-view    candidates from each scan's own spherical view, read by the decoders\n"
 	"                   (the default with --window 1: one scan, one viewpoint; with a window,\n"
 	"                   only over slow motion: docs/LOCALIZATION.md)\n"
@@ -44,7 +47,7 @@ int runObserve(int argc, char** argv)
 {
 	return cli::runCommand("observe", [&] {
 		const cli::Args a =
-			cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window"}), {"--help", "--quiet", "--sensor-view", "--map-path"});
+			cli::parse(argc, argv, 1, with(pipelineOptions(), {"--window", "--max-window"}), {"--help", "--quiet", "--sensor-view", "--map-path"});
 		if (a.has("--help"))
 		{
 			std::cout << kUsage << pipelineOptionsHelp();
@@ -55,6 +58,10 @@ int runObserve(int argc, char** argv)
 		const long window = a.getInt("--window", 1);
 		// 100 frames of a 10 Hz sensor are 10 s: odometry drift no longer small.
 		if (window < 1 || window > 100) throw cli::UsageError("--window must be 1-100 scans");
+		const long maxWindow = a.getInt("--max-window", 0);
+		// One scan is detected in its own sensor view, which a merged window is not.
+		if (a.has("--max-window") && (window < 2 || maxWindow <= window || maxWindow > 100))
+			throw cli::UsageError("--max-window must be above --window (2 or more) and at most 100 scans");
 		if (a.has("--sensor-view") && a.has("--map-path")) throw cli::UsageError("--sensor-view or --map-path, not both");
 		// The window's parameters unless a config file replaces them; the flags win.
 		PipelineParams params = pipelineParamsFromArgs(a, localize::singleScanPipelineParams(static_cast<size_t>(window)));
@@ -68,6 +75,7 @@ int runObserve(int argc, char** argv)
 		progress.update("reading", log.size(), log.size());
 		localize::ObserveParams observeParams;
 		observeParams.window = static_cast<size_t>(window);
+		observeParams.maxWindow = static_cast<size_t>(maxWindow);
 		localize::ObserveReport report;
 		const mrpt::obs::CRawlog observed = localize::observeRawlog(
 			log, Pipeline(params), observeParams, &report, [&](size_t done, size_t total) { progress.update("scans", done, total); });

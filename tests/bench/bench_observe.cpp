@@ -14,7 +14,7 @@
 //             with the 2 before it by the odometry (observe --window 3: ~30 k)
 //
 //   build/bin/tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N]
-//                                  [--family LIST] [--seed S] [--window N] [--misses]
+//                                  [--family LIST] [--seed S] [--window N] [--max-window M] [--misses]
 //                                  [--sensor-view | --map-path] [--config FILE]
 // `both` is spinning and livox. --config reads the pipeline's parameters
 // as `tagmap observe --config` does (the file's sensor_view.enabled chooses
@@ -54,6 +54,7 @@ struct Options
 	std::string families = "tag36h11";
 	uint64_t seed = 1;
 	size_t window = 0;  // 0: each sensor's own (spinning 1, Livox 3)
+	size_t maxWindow = 0;  // observe --max-window (0: none)
 	bool misses = false;  // explain every tag with points in the window that was not seen
 	std::string path;  // "sensor-view" or "map-path" when chosen; observe's default otherwise
 	std::string config;  // YAML parameters over the built-in defaults, as observe --config
@@ -89,6 +90,36 @@ NormalizedError normalizedError(const TagDetection& found, const TagDetection& t
 
 // NaN for no values (a sensor that saw no tag has no errors to rank).
 double quantile(std::vector<double> v, double q) { return v.empty() ? NAN : quantileInPlace(v, q); }
+
+// Pose errors of sightings against the truth in the sensor frame, and
+// against each one's reported covariance.
+struct SightingErrors
+{
+	std::vector<double> position, rotation, positionNorm, rotationNorm;
+
+	void add(const TagError& e, const TagDetection& seen, const TagDetection& truth)
+	{
+		position.push_back(e.positionError.norm());
+		rotation.push_back(e.rotationErrorDeg.norm());
+		// A detection without a covariance has no normalized error: ranked
+		// as NaN it would break the quantiles' ordering.
+		const NormalizedError n = normalizedError(seen, truth);
+		if (std::isfinite(n.position)) positionNorm.push_back(n.position);
+		if (std::isfinite(n.rotation)) rotationNorm.push_back(n.rotation);
+	}
+	void print(const std::string& label) const
+	{
+		std::printf("%s (%zu): error in the sensor frame: position median %.4f m, p90 %.4f m; rotation median "
+					"%.3f deg, p90 %.3f deg\n",
+					label.c_str(), position.size(), quantile(position, 0.5), quantile(position, 0.9),
+					quantile(rotation, 0.5), quantile(rotation, 0.9));
+		if (!positionNorm.empty())
+			std::printf("  error / reported sigma (sqrt(e' C^-1 e / 3); ~0.9 at the median when honest): position "
+						"median %.2f, p90 %.2f; rotation median %.2f, p90 %.2f\n",
+						quantile(positionNorm, 0.5), quantile(positionNorm, 0.9), quantile(rotationNorm, 0.5),
+						quantile(rotationNorm, 0.9));
+	}
+};
 
 // The true tags as the sensor of `frame` sees them: T_sensor_tag.
 std::vector<TagDetection> truthInSensorFrame(const std::vector<TagDetection>& truth, const sim::FrameData& frame)
@@ -223,6 +254,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 
 	localize::ObserveParams observeParams;
 	observeParams.window = opt.window ? opt.window : s.window;
+	observeParams.maxWindow = opt.maxWindow;
 	DetectionChoices choices;
 	choices.configFile = opt.config;
 	choices.families = opt.families;
@@ -252,26 +284,25 @@ void benchSensor(const SensorRun& s, const Options& opt)
 			stageItems[st.name].push_back(static_cast<double>(st.itemsIn));
 		}
 	}
-	std::vector<double> transErr, rotErr, transNorm, rotNorm;
+	// Sightings' errors, all of them and, with --max-window, by the window
+	// their detection ran on (the long one only where the short saw nothing).
+	std::map<std::string, SightingErrors> errors;
 	int sightings = 0, falseReports = 0, wrongId = 0, scansWithTag = 0;
 	for (size_t k = 0; k < seen.size() && k < sim.frames.size(); k++)
 	{
 		const std::vector<TagDetection> truth = truthInSensorFrame(sim.truth, sim.frames[k]);
 		const Evaluation ev = evaluateDetections(seen[k], truth);
 		scansWithTag += !seen[k].empty();
+		const bool longWindow = report.perScan[k].scansMerged > observeParams.window;
 		for (size_t t = 0; t < ev.perTruth.size(); t++)
 		{
 			const TagError& e = ev.perTruth[t];
 			if (!e.found) continue;
 			sightings++;
-			transErr.push_back(e.positionError.norm());
-			rotErr.push_back(e.rotationErrorDeg.norm());
 			const TagDetection& d = seen[k][static_cast<size_t>(e.foundIndex)];
-			// A detection without a covariance has no normalized error: ranked
-			// as NaN it would break the quantiles' ordering.
-			const NormalizedError n = normalizedError(d, truth[t]);
-			if (std::isfinite(n.position)) transNorm.push_back(n.position);
-			if (std::isfinite(n.rotation)) rotNorm.push_back(n.rotation);
+			errors["all sightings"].add(e, d, truth[t]);
+			if (observeParams.maxWindow > observeParams.window)
+				errors[longWindow ? "long window's" : "short window's"].add(e, d, truth[t]);
 		}
 		falseReports += ev.falsePositives();
 		wrongId += ev.falseOf(FalseKind::WrongId);
@@ -291,14 +322,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 	std::printf("\n");
 	std::printf("scans with a tag %d of %zu, sightings %d, false %d (wrong id %d)\n", scansWithTag, seen.size(),
 				sightings, falseReports, wrongId);
-	if (!transErr.empty())
-		std::printf("sighting error in the sensor frame: position median %.4f m, p90 %.4f m; rotation median %.3f deg, "
-					"p90 %.3f deg\n",
-					quantile(transErr, 0.5), quantile(transErr, 0.9), quantile(rotErr, 0.5), quantile(rotErr, 0.9));
-	if (!transNorm.empty())
-		std::printf("error / reported sigma (sqrt(e' C^-1 e / 3); ~0.9 at the median when honest): position median "
-					"%.2f, p90 %.2f; rotation median %.2f, p90 %.2f\n",
-					quantile(transNorm, 0.5), quantile(transNorm, 0.9), quantile(rotNorm, 0.5), quantile(rotNorm, 0.9));
+	for (const auto& [label, e] : errors) e.print(label);
 	if (opt.misses) printMisses(sim, report, seen, observeParams.window);
 }
 
@@ -306,7 +330,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 {
 	std::fprintf(stderr,
 				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N] "
-				 "[--family LIST] [--seed S] [--window N] [--misses] [--sensor-view | --map-path] [--config FILE]\n",
+				 "[--family LIST] [--seed S] [--window N] [--max-window M] [--misses] [--sensor-view | --map-path] [--config FILE]\n",
 				 why);
 	std::exit(2);
 }
@@ -336,6 +360,8 @@ int main(int argc, char** argv)
 		else if (a == "--family") opt.families = v;
 		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0)
 			opt.window = std::strtoul(v.c_str(), nullptr, 10);
+		else if (a == "--max-window" && std::strtoul(v.c_str(), nullptr, 10) > 1)
+			opt.maxWindow = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--seed") opt.seed = std::strtoull(v.c_str(), nullptr, 10);
 		else if (a == "--config") opt.config = v;
 		else usage(("unknown option or value: " + a + " " + v).c_str());

@@ -88,6 +88,10 @@ CASE=observe-bad-threads
 observe_rejects "--threads" "$L/scans.rawlog" --threads 0
 CASE=observe-bad-window
 observe_rejects "--window must be 1-100" "$L/scans.rawlog" --window 0
+CASE=observe-max-window-not-above-window
+observe_rejects "--max-window must be above --window" "$L/scans.rawlog" --window 3 --max-window 3
+CASE=observe-max-window-on-single-scans
+observe_rejects "--max-window must be above --window \\(2 or more\\)" "$L/scans.rawlog" --max-window 5
 CASE=observe-both-paths
 observe_rejects "--sensor-view or --map-path, not both" "$L/scans.rawlog" --sensor-view --map-path
 CASE=observe-bad-family

@@ -176,3 +176,40 @@ TEST(LocalizeSingleScan, ObserveReportsNoMirrorImageOfASheetScannedFromTheFront)
 	EXPECT_EQ(report.scans, 1u);
 	EXPECT_EQ(report.tagsSeen, 0u);
 }
+
+// observe --max-window: a tag too far for a short window is found once the
+// frames that saw nothing are detected again over the longer one. A Livox
+// frame of 0.1 s at 16 m puts ~40 points on a 0.5 m tag36h11; the sensor
+// stands still, so its odometry places the frames exactly.
+TEST(LocalizeSingleScan, AScanWhoseShortWindowSeesNothingTriesTheLongOne)
+{
+	sim::Scene scene = sim::loadScene(TAGMAP_SOURCE_DIR "/share/scenes/localize_single_scan.yaml",
+									  {{"tag_distance", 16.0}, {"livox_seconds", 1.0}});
+	scene.runs.erase(std::remove_if(scene.runs.begin(), scene.runs.end(), [&](const sim::ScanRun& r) { return r.name != "livox"; }), scene.runs.end());
+	sim::SimOptions opt;
+	opt.seed = 3;
+	opt.threads = 2;
+	const mrpt::obs::CRawlog rawlog = sim::toRawlog(sim::simulate(scene, opt));
+	PipelineParams params = localize::singleScanPipelineParams(2);
+	params.families = {"tag36h11"};
+	params.threads = 2;
+	const Pipeline pipeline(params);
+	localize::ObserveParams shortOnly;
+	shortOnly.window = 2;
+	localize::ObserveReport alone, grown;
+	localize::observeRawlog(rawlog, pipeline, shortOnly, &alone);
+	localize::ObserveParams growing = shortOnly;
+	growing.maxWindow = 8;
+	localize::observeRawlog(rawlog, pipeline, growing, &grown);
+	std::printf("scans %zu: window 2 saw the tag in %zu, up to 8 in %zu\n", alone.scans, alone.scansWithTags,
+				grown.scansWithTags);
+	ASSERT_EQ(alone.scans, 10u);
+	EXPECT_EQ(alone.scansWithTags, 0u) << "the short window already sees the tag: nothing left to test";
+	EXPECT_GE(grown.scansWithTags, 3u);
+	for (size_t k = 0; k < grown.perScan.size(); k++)
+		EXPECT_LE(grown.perScan[k].scansMerged, std::min<size_t>(k + 1, 8)) << "scan " << k;
+	// A scan that saw the tag used the long window; the first one has no
+	// earlier scans to merge.
+	EXPECT_EQ(grown.perScan[0].scansMerged, 1u);
+	EXPECT_GT(grown.perScan.back().scansMerged, 2u);
+}

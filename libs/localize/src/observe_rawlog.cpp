@@ -2,6 +2,7 @@
 
 #include <mrpt/obs/CSensoryFrame.h>
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 
@@ -49,24 +50,26 @@ class Observer
 		if (!scan) return {};
 		mrpt::poses::CPose3D sensorPose;
 		scanObs.getSensorPose(sensorPose);
-		std::vector<size_t> scanStarts;
-		std::vector<Eigen::Vector3d> viewpoints;
-		const mrpt::maps::CPointsMapXYZI merged = mergeWindow(std::move(*scan), sensorPose, scanStarts, viewpoints);
-		pointsDetected_ += merged.size();
+		const mrpt::poses::CPose3D sensorNow = mrpt::poses::CPose3D(odometry_.pose()) + sensorPose;
 
 		auto tags = obs::CObservationTagPoses::Create();
 		tags->sensorLabel = scanObs.sensorLabel + params_.tagsLabelSuffix;
 		tags->timestamp = scanObs.timestamp;
 		tags->sensorPose = sensorPose;
-		// Where each merged scan's sensor stood: a read whose printed face
-		// none of them could see is a mirror image (front_side.h).
-		Detections found = pipeline_.detect(merged, viewpoints);
-		// Merged scans were placed by drifting odometry: the tag is as
-		// uncertain as they disagree (window_disagreement.h).
-		for (TagDetection& t : found.tags)
-			addMisregistration(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
-		report_.perScan.push_back(
-			{merged.size(), found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
+		WindowDetection detection = detectWindow(*scan, sensorNow, params_.window);
+		// No tag in the short window: the frames between tags try the long one.
+		const size_t longest = std::min(params_.maxWindow, window_.size() + 1);
+		if (detection.found.tags.empty() && longest > params_.window)
+		{
+			const double shortSeconds = detection.found.totalSeconds;
+			detection = detectWindow(*scan, sensorNow, longest);
+			detection.found.totalSeconds += shortSeconds;
+		}
+		auto& [found, points, scansMerged] = detection;
+		window_.push_back({sensorNow, std::move(*scan)});
+		if (window_.size() >= std::max(params_.window, params_.maxWindow)) window_.pop_front();
+		pointsDetected_ += points;
+		report_.perScan.push_back({points, scansMerged, found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
 		tags->tags = std::move(found.tags);
 
 		auto ranges = makeBeaconRanges(tags->tags, sensorPose, params_.ranges);
@@ -89,27 +92,35 @@ class Observer
 		mrpt::maps::CPointsMapXYZI points;  // in its sensor frame
 	};
 
-	/** This scan and the window's earlier ones, in this scan's sensor frame;
-	 *  `scanStarts` gets the index of each one's first point, `viewpoints`
-	 *  each one's sensor position (this scan's: the origin). */
-	mrpt::maps::CPointsMapXYZI mergeWindow(mrpt::maps::CPointsMapXYZI scan, const mrpt::poses::CPose3D& sensorPose,
-										   std::vector<size_t>& scanStarts, std::vector<Eigen::Vector3d>& viewpoints)
+	struct WindowDetection
 	{
-		scanStarts = {0};
-		viewpoints = {Eigen::Vector3d::Zero()};
-		if (params_.window <= 1) return scan;
-		const mrpt::poses::CPose3D sensorNow = mrpt::poses::CPose3D(odometry_.pose()) + sensorPose;
+		Detections found;
+		size_t points = 0;  // the window's scans merged
+		size_t scans = 1;
+	};
+	/** Tags in `scan` merged with the `count` - 1 scans before it. Each
+	 *  detection knows where the merged scans' sensors stood (a read whose
+	 *  printed face none of them could see is a mirror image: front_side.h),
+	 *  and its tags are as uncertain as those scans, placed by drifting
+	 *  odometry, disagree about them (window_disagreement.h). */
+	WindowDetection detectWindow(const mrpt::maps::CPointsMapXYZI& scan, const mrpt::poses::CPose3D& sensorNow,
+							size_t count)
+	{
+		std::vector<size_t> scanStarts = {0};
+		std::vector<Eigen::Vector3d> viewpoints = {Eigen::Vector3d::Zero()};
 		mrpt::maps::CPointsMapXYZI merged = scan;
-		for (const PastScan& past : window_)
+		const size_t earlier = std::min(count - 1, window_.size());
+		for (auto past = window_.end() - static_cast<std::ptrdiff_t>(earlier); past != window_.end(); ++past)
 		{
 			scanStarts.push_back(merged.size());
-			const mrpt::poses::CPose3D inThisFrame = past.sensorInOdometry - sensorNow;
-			merged.insertAnotherMap(&past.points, inThisFrame);
+			const mrpt::poses::CPose3D inThisFrame = past->sensorInOdometry - sensorNow;
+			merged.insertAnotherMap(&past->points, inThisFrame);
 			viewpoints.emplace_back(inThisFrame.x(), inThisFrame.y(), inThisFrame.z());
 		}
-		window_.push_back({sensorNow, std::move(scan)});
-		if (window_.size() >= params_.window) window_.pop_front();
-		return merged;
+		Detections found = pipeline_.detect(merged, viewpoints);
+		for (TagDetection& t : found.tags)
+			addMisregistration(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
+		return {std::move(found), merged.size(), scanStarts.size()};
 	}
 
 	const Pipeline& pipeline_;
@@ -117,7 +128,7 @@ class Observer
 	ObserveReport& report_;
 	size_t total_;
 	OdometryIntegrator odometry_;
-	std::deque<PastScan> window_;  // the window - 1 scans before the next one
+	std::deque<PastScan> window_;  // the longest window - 1 scans before the next one
 	size_t pointsDetected_ = 0;
 	const CountProgressFn& progress_;
 };
@@ -145,8 +156,9 @@ mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& p
 	const auto t0 = std::chrono::steady_clock::now();
 	ObserveReport report;
 	const OdometrySource odometry = findOdometry(in);
-	if (params.window > 1 && odometry == OdometrySource::none)
-		throw InputError("a window of " + std::to_string(params.window) +
+	const size_t longest = std::max(params.window, params.maxWindow);
+	if (longest > 1 && odometry == OdometrySource::none)
+		throw InputError("a window of " + std::to_string(longest) +
 							 " scans needs odometry (CActionRobotMovement2D/3D or CObservationOdometry) to place "
 							 "them; the rawlog has none");
 	Observer observer(pipeline, params, report, countObservations(in), odometry, progress);

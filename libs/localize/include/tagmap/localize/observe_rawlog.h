@@ -31,6 +31,12 @@ struct ObserveParams
 	 *  A merged tag's position covariance also carries how much the scans
 	 *  disagree about it (window_disagreement.h). */
 	size_t window = 1;
+	/** Longest window: when `window` scans show no tag, the scan is detected
+	 *  again merged with up to maxWindow - 1 scans before it. Most frames
+	 *  keep the short window's small drift; those between tags, which a
+	 *  short window leaves empty, get a sighting whose covariance says how
+	 *  much more its scans disagree. 0 or <= window: no second try. */
+	size_t maxWindow = 0;
 };
 
 /** One detection's cost: the points it ran on (the window merged) and the
@@ -38,7 +44,8 @@ struct ObserveParams
 struct ScanTiming
 {
 	size_t points = 0;
-	double seconds = 0;  // Pipeline::detect alone, not reading or merging
+	size_t scansMerged = 1;  // the window the reported detection ran on (maxWindow's when the short one saw nothing)
+	double seconds = 0;  // Pipeline::detect alone (both windows' when the long one was tried), not reading or merging
 	std::vector<StageReport> stages;
 	std::vector<CandidateReport> candidates;  // where each candidate was and what became of it (no images)
 };
