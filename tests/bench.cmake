@@ -7,7 +7,7 @@ tagmap_warnings(tagmap-bench-accuracy)
 # Scale benchmark: binary PCD -> detect -> JSON at 1, 5, 20 million points
 # (docs/PERFORMANCE.md). ctest runs it at 300k points only: it must run and print.
 add_executable(tagmap-bench-large bench/bench_large.cpp)
-target_link_libraries(tagmap-bench-large PRIVATE tagmap_detect tagmap_sim tagmap_io tagmap_core)
+target_link_libraries(tagmap-bench-large PRIVATE tagmap_detect tagmap_localize tagmap_sim tagmap_io tagmap_core)
 target_compile_definitions(tagmap-bench-large PRIVATE TAGMAP_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 tagmap_warnings(tagmap-bench-large)
 add_test(NAME bench_large_smoke

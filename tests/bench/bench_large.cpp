@@ -8,7 +8,10 @@
 // Each size runs in a fresh child process (this program re-executes itself),
 // so one size's peak memory never hides in another's. Maps are simulated
 // once (share/scenes/large.yaml, seed 1, like `tagmap simulate --points N`)
-// and cached in --cache DIR/large-N/{map.pcd,ground_truth.json}.
+// and cached in --cache DIR/large-N/{map.pcd,ground_truth.json,
+// trajectory_drifted.tum}. The map is detected with the trajectory it was
+// built from, as `tagmap detect map.pcd --viewpoints trajectory_drifted.tum`:
+// the sensors' positions tell a mirror image from a tag (front_side.h).
 //
 //   build/bin/tagmap-bench-large --cache build/bench-maps [--sizes 1000000,5000000,20000000]
 //                                [--threads N] [--repeat R] [--scene FILE]
@@ -28,6 +31,7 @@
 #include <vector>
 
 #include "tagmap/evaluation.h"
+#include "tagmap/localize/trajectory_tum.h"
 #include "tagmap/io/point_cloud_io.h"
 #include "tagmap/parallel.h"
 #include "tagmap/pipeline.h"
@@ -89,7 +93,10 @@ int generate(const Options& o, size_t n)
 	opt.seed = 1;
 	opt.targetPoints = n;
 	const tagmap::sim::SimulationOutput out = tagmap::sim::simulate(tagmap::sim::loadScene(o.scene), opt);
-	tagmap::sim::writeSimulationOutputs(dir, out, {false, opt.seed});
+	tagmap::sim::WriteOptions write;
+	write.seed = opt.seed;
+	write.trajectories = true;
+	tagmap::sim::writeSimulationOutputs(dir, out, write);
 	std::filesystem::copy_file(o.scene, dir + "/scene.yaml", std::filesystem::copy_options::overwrite_existing);
 	return 0;
 }
@@ -105,8 +112,9 @@ std::string fileText(const std::string& path)
 bool cachedMapIsCurrent(const Options& o, size_t n)
 {
 	const std::string dir = mapDir(o, n);
-	return std::filesystem::exists(dir + "/map.pcd") && std::filesystem::exists(dir + "/ground_truth.json") &&
-		   std::filesystem::exists(dir + "/scene.yaml") && fileText(dir + "/scene.yaml") == fileText(o.scene);
+	for (const char* f : {"/map.pcd", "/ground_truth.json", "/trajectory_drifted.tum", "/scene.yaml"})
+		if (!std::filesystem::exists(dir + f)) return false;
+	return fileText(dir + "/scene.yaml") == fileText(o.scene);
 }
 
 struct Row
@@ -128,6 +136,9 @@ int measure(const Options& o, size_t n)
 	const auto t0 = Clock::now();
 	tagmap::io::LoadReport rep;
 	const mrpt::maps::CPointsMapXYZI map = tagmap::io::loadPointCloud(dir + "/map.pcd", &rep);
+	std::vector<Eigen::Vector3d> viewpoints;  // in the map's local frame, as `detect --viewpoints` puts them
+	for (const tagmap::localize::StampedPose& p : tagmap::localize::readTum(dir + "/trajectory_drifted.tum"))
+		viewpoints.push_back(p.pose.translation() - rep.origin);
 	const auto t1 = Clock::now();
 	const double cpuRead = cpuSeconds();
 	rows.push_back({"read_pcd", seconds(t0, t1), rep.pointsRead, map.size(), true, peakRssBytes(), cpuRead});
@@ -142,7 +153,7 @@ int measure(const Options& o, size_t n)
 		double peak, cpu;
 	};
 	std::vector<Event> events;
-	const tagmap::Detections found = pipeline.detect(map, [&](const std::string& stage, size_t, size_t) {
+	const tagmap::Detections found = pipeline.detect(map, viewpoints, [&](const std::string& stage, size_t, size_t) {
 		events.push_back({stage, peakRssBytes(), cpuSeconds()});
 	});
 	const auto t2 = Clock::now();
@@ -178,8 +189,9 @@ int measure(const Options& o, size_t n)
 
 	const double total = seconds(t0, t3), peak = peakRssBytes();
 	const double cpu = cpuSeconds();
-	std::printf("\n== %zu points (%s), threads %u, load average %.2f before / %.2f after\n", map.size(),
-				rep.format.c_str(), tagmap::resolveThreads(o.threads), load0, loadAverage());
+	std::printf("\n== %zu points (%s, %zu sensor positions), threads %u, load average %.2f before / %.2f after\n",
+				map.size(), rep.format.c_str(), viewpoints.size(), tagmap::resolveThreads(o.threads), load0,
+				loadAverage());
 	std::printf("%-20s %9s %9s %12s %12s %14s %12s\n", "stage", "seconds", "CPU s", "in", "out", "points/s",
 				"peak RSS MB");
 	for (const Row& r : rows)

@@ -134,11 +134,14 @@ void writeSimulationOutputs(const std::string& dir, const SimulationOutput& out,
 	}
 	writeTagsJson((d / "ground_truth.json").string(), translatedTags(out.truth, options.shift),
 				  groundTruthMetadata(out, options.seed, options.shift), sightingFields(out));
-	if (!options.simplemap) return;
-	const mrpt::maps::CSimpleMap sm = toSimpleMap(out);
-	writeFileAtomicallyByName((d / "scans.simplemap").string(), [&](const std::string& tmp) {
-		if (!sm.saveToFile(tmp)) throw InputError(tmp, "", "cannot write simplemap");
-	});
+	if (options.simplemap)
+	{
+		const mrpt::maps::CSimpleMap sm = toSimpleMap(out);
+		writeFileAtomicallyByName((d / "scans.simplemap").string(), [&](const std::string& tmp) {
+			if (!sm.saveToFile(tmp)) throw InputError(tmp, "", "cannot write simplemap");
+		});
+	}
+	if (!options.simplemap && !options.trajectories) return;
 	for (bool drifted : {false, true})
 	{
 		const std::string text = tumTrajectory(out, drifted);

@@ -1,7 +1,7 @@
 // Writing a simulation to disk: DIR/map.pcd (binary, via tagmap::io),
 // DIR/ground_truth.json (the `tags` schema of docs/RESULT_FORMAT.md + scene metadata) and
-// optionally the SLAM-style keyframes DIR/scans.simplemap with
-// DIR/trajectory_true.tum and DIR/trajectory_drifted.tum.
+// optionally the SLAM-style keyframes DIR/scans.simplemap and the
+// trajectories DIR/trajectory_true.tum and DIR/trajectory_drifted.tum.
 #pragma once
 
 #include <mrpt/maps/CSimpleMap.h>
@@ -17,6 +17,10 @@ namespace tagmap::sim
 struct WriteOptions
 {
 	bool simplemap = false;
+	/** DIR/trajectory_true.tum and DIR/trajectory_drifted.tum (the frames'
+	 *  sensor poses in the map's frame, as SLAM writes them beside a map;
+	 *  always with the simplemap). */
+	bool trajectories = false;
 	uint64_t seed = 0;  // recorded in the metadata
 	/** Also DIR/map.las in this LAS point format (0..10); -1: none. */
 	int lasFormat = -1;
