@@ -151,27 +151,6 @@ TEST(CandidateFilter, PaperCriteria)
 	EXPECT_EQ(rejectCandidate(box, 0.01, 0.002, p), Verdict::NotFlat);
 }
 
-TEST(VoxelGrid, RowScanVisitsTheSameVoxelsAsFind)
-{
-	// A sparse random cloud: every row segment's voxels, scanned forward
-	// from one search, are the ones find() reports cell by cell.
-	std::mt19937 rng(3);
-	std::uniform_real_distribution<float> u(0.0f, 1.0f);
-	std::vector<float> x(2000), y(2000), z(2000);
-	for (size_t i = 0; i < x.size(); i++) x[i] = u(rng), y[i] = u(rng), z[i] = 0.2f * u(rng);
-	const VoxelGrid grid(x.data(), y.data(), z.data(), x.size(), 0.05, 1);
-	for (int zk = -1; zk < 8; zk++)
-		for (int yk = -1; yk < 25; yk++)
-			for (int x0 : {-3, 0, 5, 17})
-			{
-				std::vector<size_t> scanned, found;
-				grid.forEachVoxelInRow(x0, x0 + 6, yk, zk, [&](size_t v) { scanned.push_back(v); });
-				for (int xk = x0; xk <= x0 + 6; xk++)
-					if (const int64_t v = grid.find({xk, yk, zk}); v >= 0) found.push_back(static_cast<size_t>(v));
-				EXPECT_EQ(scanned, found) << x0 << " " << yk << " " << zk;
-			}
-}
-
 TEST(VoxelGrid, BlockScanVisitsTheSameVoxelsAsFind)
 {
 	// Blocks of many rows, some reaching outside the grid: the cursor that

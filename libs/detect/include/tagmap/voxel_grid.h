@@ -87,15 +87,6 @@ class VoxelGrid
 	/** Position of a voxel's first point in the sorted order (begin(v) - begin(0)). */
 	size_t voxelOffset(size_t voxel) const { return voxelStart_[voxel]; }
 
-	/** Calls f(voxelIndex) for every non-empty voxel of row (y, z) with x
-	 *  in [x0, x1], in ascending index: keys along x are consecutive, so one
-	 *  binary search and a forward scan instead of a search per cell. */
-	template <typename F>
-	void forEachVoxelInRow(int x0, int x1, int y, int z, F&& f) const
-	{
-		forEachVoxelInBlock({x0, y, z}, {x1, y, z}, f);
-	}
-
 	/** Voxels with linear keys first..last (inclusive): a stretch of a row,
 	 *  or rows joined end to end (keys run along x, then y, then z). */
 	struct KeySpan

@@ -17,10 +17,6 @@ namespace tagmap::sim
 struct WriteOptions
 {
 	bool simplemap = false;
-	/** DIR/trajectory_true.tum and DIR/trajectory_drifted.tum (the frames'
-	 *  sensor poses in the map's frame, as SLAM writes them beside a map;
-	 *  always with the simplemap). */
-	bool trajectories = false;
 	uint64_t seed = 0;  // recorded in the metadata
 	/** Also DIR/map.las in this LAS point format (0..10); -1: none. */
 	int lasFormat = -1;
@@ -28,6 +24,10 @@ struct WriteOptions
 	 *  a georeferenced copy of the scene (e.g. UTM), for testing large
 	 *  coordinates. The simplemap and trajectories stay unshifted. */
 	Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+	/** DIR/trajectory_true.tum and DIR/trajectory_drifted.tum (the frames'
+	 *  sensor poses in the map's frame, as SLAM writes them beside a map;
+	 *  always with the simplemap). */
+	bool trajectories = false;
 };
 
 /** Creates `dir` if needed; every file is written atomically. Throws InputError
