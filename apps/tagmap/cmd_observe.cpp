@@ -84,8 +84,11 @@ int runObserve(int argc, char** argv)
 		io::saveRawlog(out, observed);
 		progress.finish();
 		if (quiet) return 0;
-		std::printf("%zu scans, %zu with tags, %zu tag sightings, %.1f s (detection: median %.1f ms per scan) -> %s\n",
-					report.scans, report.scansWithTags, report.tagsSeen, report.seconds,
+		const std::string longWindow = observeParams.maxWindow > observeParams.window
+											? " (" + std::to_string(report.scansWithTagsInLongWindow) + " by the longer window)"
+											: "";
+		std::printf("%zu scans, %zu with tags%s, %zu tag sightings, %.1f s (detection: median %.1f ms per scan) -> %s\n",
+					report.scans, report.scansWithTags, longWindow.c_str(), report.tagsSeen, report.seconds,
 					1000 * report.medianDetectSeconds(), out.c_str());
 		std::string perTag;
 		for (const auto& [tag, scans] : report.scansPerTag) perTag += " " + tag + " (" + std::to_string(scans) + ")";

@@ -206,6 +206,7 @@ TEST(LocalizeSingleScan, AScanWhoseShortWindowSeesNothingTriesTheLongOne)
 	ASSERT_EQ(alone.scans, 10u);
 	EXPECT_EQ(alone.scansWithTags, 0u) << "the short window already sees the tag: nothing left to test";
 	EXPECT_GE(grown.scansWithTags, 3u);
+	EXPECT_EQ(grown.scansWithTagsInLongWindow, grown.scansWithTags);
 	for (size_t k = 0; k < grown.perScan.size(); k++)
 		EXPECT_LE(grown.perScan[k].scansMerged, std::min<size_t>(k + 1, 8)) << "scan " << k;
 	// A scan that saw the tag used the long window; the first one has no

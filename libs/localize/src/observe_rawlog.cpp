@@ -78,6 +78,7 @@ class Observer
 
 		report_.scans++;
 		report_.scansWithTags += !tags->tags.empty();
+		report_.scansWithTagsInLongWindow += !tags->tags.empty() && scansMerged > params_.window;
 		report_.tagsSeen += tags->tags.size();
 		for (const TagDetection& t : tags->tags) report_.scansPerTag[tagLabel(t.family, t.id)]++;
 		report_.meanPointsDetected = pointsDetected_ / report_.scans;

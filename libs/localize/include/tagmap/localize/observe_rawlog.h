@@ -54,6 +54,7 @@ struct ObserveReport
 {
 	size_t scans = 0;  // LiDAR observations processed
 	size_t scansWithTags = 0;
+	size_t scansWithTagsInLongWindow = 0;  // of those, seen only by maxWindow's second try
 	size_t tagsSeen = 0;  // sum over scans
 	size_t meanPointsDetected = 0;  // points per detection (the window's scans merged)
 	/** Scans in which each tag ("family:id") was seen: is every tag of the
