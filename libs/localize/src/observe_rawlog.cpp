@@ -69,7 +69,8 @@ class Observer
 		window_.push_back({sensorNow, std::move(*scan)});
 		if (window_.size() >= std::max(params_.window, params_.maxWindow)) window_.pop_front();
 		pointsDetected_ += points;
-		report_.perScan.push_back({points, scansMerged, found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
+		report_.perScan.push_back(
+			{points, scansMerged, found.totalSeconds, std::move(found.stages), std::move(found.candidates)});
 		tags->tags = std::move(found.tags);
 
 		auto ranges = makeBeaconRanges(tags->tags, sensorPose, params_.ranges);
@@ -97,7 +98,7 @@ class Observer
 	{
 		Detections found;
 		size_t points = 0;  // the window's scans merged
-		size_t scans = 1;
+		size_t scansMerged = 1;
 	};
 	/** Tags in `scan` merged with the `count` - 1 scans before it. Each
 	 *  detection knows where the merged scans' sensors stood (a read whose
@@ -105,7 +106,7 @@ class Observer
 	 *  and its tags are as uncertain as those scans, placed by drifting
 	 *  odometry, disagree about them (window_disagreement.h). */
 	WindowDetection detectWindow(const mrpt::maps::CPointsMapXYZI& scan, const mrpt::poses::CPose3D& sensorNow,
-							size_t count)
+								 size_t count)
 	{
 		std::vector<size_t> scanStarts = {0};
 		std::vector<Eigen::Vector3d> viewpoints = {Eigen::Vector3d::Zero()};

@@ -26,9 +26,9 @@
 // different part of it (a rosette's petals), offsets along the normal tilt
 // the fitted plane and shifts in the plane turn the fitted pattern. The
 // turn is propagated from the same spreads through a least-squares fit of
-// the tag's points with each scan moved as a whole (tiltAndTurn in the .cpp): a
-// scan covering the whole tag tilts nothing, two halves a tag width apart
-// tilt it by their offset over half that width. A heading drift turns the
+// the tag's points with each scan moved as a whole (tiltAndTurn in the
+// .cpp): a scan covering the whole tag tilts nothing, two halves a tag
+// width apart tilt it by their offset over half that width. A heading drift turns the
 // tag only by itself, a tenth of the translation it causes at a few metres'
 // range, and is left out. The fits' own turns are not used: on the car
 // park's sparse frames they scattered by 5-16 deg, far beyond both their
@@ -68,8 +68,9 @@ struct WindowMisregistration
  *  in `merged`'s frame); all 0 when fewer than two scans hold enough points.
  *  `scanStarts`: the first point of each scan in `merged`, increasing (the
  *  last scan runs to the end); the current scan first, then the earlier
- *  ones oldest first, as observe merges them (a scan's age is its drift). `surfaceNoise`: the RMS of a flat surface in
- *  these points (Detections::surfaceNoise). */
+ *  ones oldest first, as observe merges them (a scan's age is its drift).
+ *  `surfaceNoise`: the RMS of a flat surface in these points
+ *  (Detections::surfaceNoise). */
 WindowMisregistration windowMisregistration(const TagDetection& tag, const mrpt::maps::CPointsMapXYZI& merged,
 											const std::vector<size_t>& scanStarts, double surfaceNoise,
 											const WindowDisagreementParams& params = {});
