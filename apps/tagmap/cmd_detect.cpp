@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "tagmap/tag_table.h"
 #include "tagmap/tags_json.h"
 #include "tagmap/verdict.h"
+#include "tagmap/voxel_grid.h"
 
 namespace tagmap::app
 {
@@ -52,7 +54,8 @@ std::string usage()
 		   "  --viewpoints TRAJ  the sensor poses the map was built from, as TUM lines (t x y z qx qy\n"
 		   "                     qz qw, the file's frame: e.g. a SLAM system's trajectory): a read\n"
 		   "                     whose printed face none of them could see is rejected (a .simplemap\n"
-		   "                     or .rawlog input brings its own; default: none for point clouds)\n" +
+		   "                     or .rawlog input brings its own; default: none for point clouds);\n"
+		   "                     a trajectory with no position within 1 km of the map is an error\n" +
 		   pipelineOptionsHelp() +
 		   "  --quiet            print nothing but errors (default: progress and a table of tags)\n"
 		   "  --verbose          also print per-stage timings and counts\n"
@@ -80,6 +83,28 @@ std::vector<Eigen::Vector3d> trajectoryPositions(const std::string& path)
 	for (const localize::StampedPose& p : localize::readTum(path)) positions.push_back(p.pose.translation());
 	if (positions.empty()) throw InputError(path, "", "no pose in the trajectory (TUM lines: t x y z qx qy qz qw)");
 	return positions;
+}
+
+// A trajectory in another frame than the map's (UTM against local, a SLAM
+// system's odometry frame) would point every line of sight the wrong way and
+// reject real tags as seen from behind. A sensor measures within its range
+// of the points it took, and no LiDAR's range reaches a kilometre beyond a
+// map as large as the space between them: none that close is a wrong frame.
+void checkTrajectoryNearMap(const std::string& path, const std::vector<Eigen::Vector3d>& positions,
+							const mrpt::maps::CPointsMapXYZI& map)
+{
+	if (positions.empty() || map.empty()) return;
+	Eigen::Vector3d lo, hi;
+	pointBounds(map.getPointsBufferRef_x().data(), map.getPointsBufferRef_y().data(), map.getPointsBufferRef_z().data(),
+				map.size(), 0, lo, hi);
+	const double reach = std::max(1000.0, (hi - lo).norm());
+	double nearest = std::numeric_limits<double>::infinity();
+	for (const Eigen::Vector3d& p : positions)
+		nearest = std::min(nearest, (p.cwiseMax(lo).cwiseMin(hi) - p).norm());
+	if (nearest > reach)
+		throw InputError(path, "", "no sensor position within " + std::to_string(static_cast<long long>(reach)) +
+									   " m of the map (the nearest is " + std::to_string(static_cast<long long>(nearest)) +
+									   " m off): the trajectory must be in the map's frame");
 }
 
 std::string skippedSummary(const io::LoadReport& load)
@@ -167,7 +192,10 @@ int runDetect(int argc, char** argv)
 		// A simplemap's or rawlog's sensor positions: a read whose printed
 		// face none of them could see is a mirror image (front_side.h).
 		used.viewpoints = load.localViewpoints();
-		for (const Eigen::Vector3d& p : trajectory) used.viewpoints.push_back(p - origin);
+		std::vector<Eigen::Vector3d> trajectoryHere;  // in the map's local frame
+		for (const Eigen::Vector3d& p : trajectory) trajectoryHere.push_back(p - origin);
+		checkTrajectoryNearMap(args.get("--viewpoints"), trajectoryHere, map);
+		used.viewpoints.insert(used.viewpoints.end(), trajectoryHere.begin(), trajectoryHere.end());
 		if (!quiet)
 		{
 			std::fprintf(stderr, "tagmap: read %zu points from %s (%s, intensity from '%s'), local origin %.3f %.3f %.3f",

@@ -46,6 +46,9 @@ detect_with_bad --viewpoints "$C/empty.tum" -- "empty\.tum: no pose"
 CASE=viewpoints-garbage
 printf '0 1 2 x\n' >"$C/bad.tum"
 detect_with_bad --viewpoints "$C/bad.tum" -- "bad\.tum: line 1"
+CASE=viewpoints-in-another-frame
+printf '0 512345 5123456 187 0 0 0 1\n' >"$C/utm.tum"  # UTM, while the map is local
+detect_with_bad --viewpoints "$C/utm.tum" -- "utm\.tum: no sensor position within 1000 m of the map"
 CASE=tag-size-absurd
 detect_with_bad --tag-size 1e30 -- "--tag-size must be a positive length in metres, at most 10"
 CASE=threads-zero

@@ -1096,4 +1096,12 @@ TEST(FrontSide, LinesOfSightToTheSensorsTellTheFaceFromTheBack)
 	for (size_t i = 0; i < xs.size(); i++) x2.push_back(1.5f), y2.push_back(ys[i]), z2.push_back(zs[i]);
 	const VoxelGrid walled(x2.data(), y2.data(), z2.data(), x2.size(), 0.05);
 	EXPECT_FALSE(seenOnlyFromBehind(mirror, {Eigen::Vector3d(0, 0, 1.4)}, walled, clearance));
+	// A sensor far beyond the map, in the same directions: the same answers
+	// (the lines are walked only while they are within the map's bounds).
+	const Eigen::Vector3d farBefore = face.position() + 1e6 * (before - face.position()).normalized();
+	const Eigen::Vector3d farBehind = face.position() + 1e6 * (behind - face.position()).normalized();
+	EXPECT_FALSE(seenOnlyFromBehind(face, {farBefore}, grid, clearance));
+	EXPECT_TRUE(seenOnlyFromBehind(mirror, {farBefore}, grid, clearance));
+	EXPECT_FALSE(seenOnlyFromBehind(mirror, {farBefore, farBehind}, grid, clearance));
+	EXPECT_FALSE(seenOnlyFromBehind(mirror, {Eigen::Vector3d(-1e6, 0, 1.4)}, walled, clearance));
 }

@@ -11,16 +11,33 @@ namespace
  *  housing and mount may have left points around it. */
 constexpr double kSensorClearance = 0.3;
 
+// How far along a -> b (0..1) the segment stays within the grid's points'
+// bounds grown by a voxel: beyond, no voxel is occupied.
+double withinGrid(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+	const Eigen::Vector3d lo = grid.lowerBound().array() - grid.cellSize(), hi = grid.upperBound().array() + grid.cellSize();
+	double t = 1;
+	for (int axis = 0; axis < 3; axis++)
+	{
+		const double d = b[axis] - a[axis];
+		if (d > 0 && b[axis] > hi[axis]) t = std::min(t, std::max(0.0, (hi[axis] - a[axis]) / d));
+		if (d < 0 && b[axis] < lo[axis]) t = std::min(t, std::max(0.0, (lo[axis] - a[axis]) / d));
+	}
+	return t;
+}
+
 // Whether the segment a -> b crosses no occupied voxel: sampled every
 // quarter voxel, so a voxel it crosses for more than that is met (a wall's
 // sheet of voxels is at least a voxel deep along any line through it).
+// Only the part within the map is walked: a sensor position far outside
+// it (or a trajectory in another frame, kilometres off) costs nothing.
 bool lineIsClear(const VoxelGrid& grid, const Eigen::Vector3d& a, const Eigen::Vector3d& b)
 {
 	const Eigen::Vector3d d = b - a;
-	const double length = d.norm(), step = 0.25 * grid.cellSize();
+	const double length = d.norm(), step = 0.25 * grid.cellSize(), walked = withinGrid(grid, a, b) * length;
 	VoxelKey last = grid.keyOf(a.cast<float>());
 	if (grid.find(last) >= 0) return false;
-	for (double s = step; s < length; s += step)
+	for (double s = step; s < walked; s += step)
 	{
 		const VoxelKey k = grid.keyOf((a + d * (s / length)).cast<float>());
 		if (k == last) continue;

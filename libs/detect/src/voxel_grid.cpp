@@ -87,12 +87,11 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 	if (n >= std::numeric_limits<uint32_t>::max()) throw std::invalid_argument("too many points (max 4e9)");
 	threads = n < 65536 ? 1u : resolveThreads(threads);
 
-	Eigen::Vector3d lo, hi;
-	pointBounds(xs, ys, zs, n, threads, lo, hi);
+	pointBounds(xs, ys, zs, n, threads, lo_, hi_);
 	// Two cells of slack on either side: neighbour keys (x +- 1) stay inside
 	// the box, so linear keys of neighbours never wrap into another row.
-	origin_ = lo - Eigen::Vector3d::Constant(2 * cellSize);
-	const Eigen::Vector3d cells = (hi - origin_) / cellSize;
+	origin_ = lo_ - Eigen::Vector3d::Constant(2 * cellSize);
+	const Eigen::Vector3d cells = (hi_ - origin_) / cellSize;
 	const float* coords[3] = {xs, ys, zs};
 	for (int a = 0; a < 3; a++)
 	{

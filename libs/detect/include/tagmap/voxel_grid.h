@@ -41,6 +41,9 @@ class VoxelGrid
 	VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n, double cellSize, unsigned threads = 0);
 
 	double cellSize() const { return cellSize_; }
+	/** The bucketed points' axis-aligned bounds: no voxel lies beyond them. */
+	const Eigen::Vector3d& lowerBound() const { return lo_; }
+	const Eigen::Vector3d& upperBound() const { return hi_; }
 	size_t voxelCount() const { return keys_.size(); }
 	size_t pointCount() const { return order_.size(); }
 
@@ -204,7 +207,7 @@ class VoxelGrid
 		return static_cast<uint64_t>(k.x) + dims_[0] * (static_cast<uint64_t>(k.y) + dims_[1] * static_cast<uint64_t>(k.z));
 	}
 	double cellSize_;
-	Eigen::Vector3d origin_;
+	Eigen::Vector3d origin_, lo_ = Eigen::Vector3d::Zero(), hi_ = Eigen::Vector3d::Zero();
 	Axis axis_[3];
 	uint64_t dims_[3] = {1, 1, 1};  // cells (keys) per axis, with a slack of 2 on either side
 	std::vector<uint32_t> order_;  // point indices sorted by voxel
