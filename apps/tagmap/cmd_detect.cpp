@@ -87,9 +87,10 @@ std::vector<Eigen::Vector3d> trajectoryPositions(const std::string& path)
 
 // A trajectory in another frame than the map's (UTM against local, a SLAM
 // system's odometry frame) would point every line of sight the wrong way and
-// reject real tags as seen from behind. A sensor measures within its range
-// of the points it took, and no LiDAR's range reaches a kilometre beyond a
-// map as large as the space between them: none that close is a wrong frame.
+// reject real tags as seen from behind. Each point was measured from a
+// sensor position within the LiDAR's range of it, and that range is below
+// a kilometre: a trajectory with no position within 1 km of the map's
+// bounds (or the map's own size, for larger maps) is in another frame.
 void checkTrajectoryNearMap(const std::string& path, const std::vector<Eigen::Vector3d>& positions,
 							const mrpt::maps::CPointsMapXYZI& map)
 {
