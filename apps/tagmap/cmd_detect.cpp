@@ -75,16 +75,6 @@ std::string usage()
 		   "LAZ: decompress first (laszip, PDAL).\n";
 }
 
-// The sensor positions of a TUM trajectory (the file's frame). An empty one
-// is a mistake, not "no viewpoint".
-std::vector<Eigen::Vector3d> trajectoryPositions(const std::string& path)
-{
-	std::vector<Eigen::Vector3d> positions;
-	for (const localize::StampedPose& p : localize::readTum(path)) positions.push_back(p.pose.translation());
-	if (positions.empty()) throw InputError(path, "", "no pose in the trajectory (TUM lines: t x y z qx qy qz qw)");
-	return positions;
-}
-
 // A trajectory in another frame than the map's (UTM against local, a SLAM
 // system's odometry frame) would point every line of sight the wrong way and
 // reject real tags as seen from behind. Each point was measured from a
@@ -174,7 +164,7 @@ int runDetect(int argc, char** argv)
 		checkMrptOutputs(args);
 		// Read before the map, so a bad trajectory fails at once.
 		const std::vector<Eigen::Vector3d> trajectory =
-			args.has("--viewpoints") ? trajectoryPositions(args.get("--viewpoints")) : std::vector<Eigen::Vector3d>{};
+			args.has("--viewpoints") ? localize::readTumPositions(args.get("--viewpoints")) : std::vector<Eigen::Vector3d>{};
 
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("reading", 0, 0);

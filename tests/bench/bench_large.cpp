@@ -137,8 +137,8 @@ int measure(const Options& o, size_t n)
 	tagmap::io::LoadReport rep;
 	const mrpt::maps::CPointsMapXYZI map = tagmap::io::loadPointCloud(dir + "/map.pcd", &rep);
 	std::vector<Eigen::Vector3d> viewpoints;  // in the map's local frame, as `detect --viewpoints` puts them
-	for (const tagmap::localize::StampedPose& p : tagmap::localize::readTum(dir + "/trajectory_drifted.tum"))
-		viewpoints.push_back(p.pose.translation() - rep.origin);
+	for (const Eigen::Vector3d& p : tagmap::localize::readTumPositions(dir + "/trajectory_drifted.tum"))
+		viewpoints.push_back(p - rep.origin);
 	const auto t1 = Clock::now();
 	const double cpuRead = cpuSeconds();
 	rows.push_back({"read_pcd", seconds(t0, t1), rep.pointsRead, map.size(), true, peakRssBytes(), cpuRead});

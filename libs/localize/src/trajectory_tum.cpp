@@ -35,6 +35,14 @@ Trajectory readTum(const std::string& path)
 	return out;
 }
 
+std::vector<Eigen::Vector3d> readTumPositions(const std::string& path)
+{
+	std::vector<Eigen::Vector3d> positions;
+	for (const StampedPose& p : readTum(path)) positions.push_back(p.pose.translation());
+	if (positions.empty()) throw InputError(path, "", "no pose in the trajectory (TUM lines: t x y z qx qy qz qw)");
+	return positions;
+}
+
 std::string toTum(const Trajectory& trajectory)
 {
 	std::string s;

@@ -21,6 +21,11 @@ using Trajectory = std::vector<StampedPose>;
  *  blank lines and '#' comments are skipped. */
 Trajectory readTum(const std::string& path);
 
+/** The sensor positions of a TUM file (its frame), for the front side's
+ *  lines of sight (`detect --viewpoints`). Throws InputError when it holds
+ *  no pose: an empty trajectory is a mistake, not "no viewpoint". */
+std::vector<Eigen::Vector3d> readTumPositions(const std::string& path);
+
 std::string toTum(const Trajectory& trajectory);
 
 /** Writes toTum() atomically. */
