@@ -410,6 +410,29 @@ TEST(CandidateFilter, ElongatedBoxIsTriedAsSquareWindows)
 	EXPECT_TRUE(squareWindows(box, 0.01, 0.002, p).empty());
 }
 
+TEST(CandidateFilter, TheSameBoxWhicheverWayItsAxesPoint)
+{
+	OrientedBox a;
+	a.center = Eigen::Vector3d(2, 1, 0.5);
+	a.extent = Eigen::Vector3d(1.0, 0.99, 0.02);
+	// The same square found again: length and width swapped, axes turned a
+	// quarter and flipped, 3 mm off.
+	OrientedBox b = a;
+	b.axes = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+			 Eigen::Vector3d(1, -1, -1).asDiagonal();
+	b.extent = Eigen::Vector3d(0.995, 0.993, 0.025);
+	b.center += Eigen::Vector3d(0.003, 0, 0);
+	EXPECT_TRUE(sameBox(a, b, 0.01));
+	EXPECT_TRUE(sameBox(b, a, 0.01));
+	EXPECT_FALSE(sameBox(a, b, 0.002));  // 3 mm apart
+	OrientedBox moved = b, turned = b, thicker = b, smaller = b;
+	moved.center.x() += 0.02;
+	turned.axes = Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()).toRotationMatrix() * b.axes;  // corners 5 cm off
+	thicker.extent.z() = 0.05;
+	smaller.extent.x() = 0.95;
+	for (const OrientedBox& o : {moved, turned, thicker, smaller}) EXPECT_FALSE(sameBox(a, o, 0.01));
+}
+
 TEST(TagQuads, FindsTheBorderSquareAndPermutationsMatchReordering)
 {
 	const TagBitmap bm = renderTagBitmap("tag36h11", 3);

@@ -2,6 +2,7 @@
 #include "tagmap/candidate_filter.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace tagmap
@@ -24,6 +25,25 @@ std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, doub
 	if (w <= 0 || l / w > p.maxAspect) return Verdict::Squareness;
 	if (h > p.maxFlatness * w + 2 * noise) return Verdict::NotFlat;
 	return std::nullopt;
+}
+
+namespace
+{
+// The corners of a box's face: its length and width about its centre.
+std::array<Eigen::Vector3d, 4> faceCorners(const OrientedBox& b)
+{
+	const Eigen::Vector3d l = 0.5 * b.extent.x() * b.axes.col(0), w = 0.5 * b.extent.y() * b.axes.col(1);
+	return {b.center + l + w, b.center + l - w, b.center - l - w, b.center - l + w};
+}
+}  // namespace
+
+bool sameBox(const OrientedBox& a, const OrientedBox& b, double tolerance)
+{
+	if ((a.center - b.center).norm() > tolerance || std::abs(a.extent.z() - b.extent.z()) > tolerance) return false;
+	const std::array<Eigen::Vector3d, 4> ca = faceCorners(a), cb = faceCorners(b);
+	return std::all_of(ca.begin(), ca.end(), [&](const Eigen::Vector3d& p) {
+		return std::any_of(cb.begin(), cb.end(), [&](const Eigen::Vector3d& q) { return (p - q).norm() <= tolerance; });
+	});
 }
 
 std::vector<OrientedBox> squareWindows(const OrientedBox& box, double band, double noise, const CandidateFilterParams& p,

@@ -69,9 +69,16 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 										 std::vector<CandidateReport>& reports)
 {
 	std::vector<Candidate> candidates;
+	// A box another candidate already has, to within a point spacing,
+	// gathers the same points into the same image: decoded once.
+	const auto proposed = [&](const OrientedBox& box) {
+		return std::any_of(candidates.begin(), candidates.end(),
+						   [&](const Candidate& o) { return sameBox(o.box, box, len.spacing); });
+	};
 	for (const Cluster& c : clusters)
 	{
-		const std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
+		std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
+		if (!why && proposed(c.box)) why = Verdict::SameBox;
 		CandidateReport rep;
 		rep.center = c.box.center;
 		rep.extent = c.box.extent;
@@ -86,9 +93,10 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 		{
 			rep.center = w.center;
 			rep.extent = w.extent;
-			rep.verdict = Verdict::Candidate;
+			const bool again = proposed(w);
+			rep.verdict = again ? Verdict::SameBox : Verdict::Candidate;
 			reports.push_back(rep);
-			candidates.push_back({reports.size() - 1, w});
+			if (!again) candidates.push_back({reports.size() - 1, w});
 		}
 	}
 	return candidates;

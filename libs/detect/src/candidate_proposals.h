@@ -55,7 +55,10 @@ size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, cons
 // Stage 3 over every cluster: a report each, and the boxes that may hold a
 // tag: the cluster's own, or for a box too long for a tag (maybe a tag
 // clustered together with an edge beside it: a pillar's corner, a shelf)
-// its square windows, candidates of their own.
+// its square windows, candidates of their own. A box an earlier candidate
+// already has (sameBox() within a point spacing: clusters of the same points
+// at two tolerances or density levels) is reported as same_box, not decoded
+// again.
 std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Cluster>& clusters,
 										 const CandidateFilterParams& cf, const DerivedLengths& len,
 										 std::vector<CandidateReport>& reports);

@@ -46,6 +46,12 @@ std::optional<Verdict> rejectCandidate(const OrientedBox& box, double band, doub
  *  asked for, even printed on a board (a rejectCandidate() Verdict::Size). */
 bool tooLargeForATag(const OrientedBox& box, double band, const CandidateFilterParams& p);
 
+/** The same box to within `tolerance` (metres): centres, the four corners
+ *  of the face and the heights each that close, whichever way either box's
+ *  axes point. Two candidates whose boxes differ by less than a point
+ *  spacing gather the same points into the same image. */
+bool sameBox(const OrientedBox& a, const OrientedBox& b, double tolerance);
+
 /** Square boxes of `box`'s width, half-overlapping along its length, for a
  *  box too elongated for a tag: a tag clustered together with an edge
  *  beside it (a pillar's corner, a shelf) lies in one of them. Up to

@@ -16,6 +16,7 @@ enum class Verdict
 	Size,
 	Squareness,
 	NotFlat,
+	SameBox,
 	NotPlanar,
 	NoDecode,
 	NoFamilyCanPass,
@@ -39,11 +40,13 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 18> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 19> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
 	{Verdict::NotFlat, "not_flat", "box too thick for a printed tag (candidates.max_flatness)"},
+	{Verdict::SameBox, "same_box",
+	 "the box of an earlier candidate, to within a point spacing: it gathers the same points, decoded once"},
 	{Verdict::NotPlanar, "not_planar", "the gathered points do not fit one plane"},
 	{Verdict::NoDecode, "no_decode", "no decoder read a tag of the requested families on the image"},
 	{Verdict::NoFamilyCanPass, "no_family_can_pass",
