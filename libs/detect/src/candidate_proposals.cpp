@@ -1,6 +1,8 @@
 #include "candidate_proposals.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <optional>
 
 #include "tagmap/tag_family.h"
@@ -70,10 +72,31 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 {
 	std::vector<Candidate> candidates;
 	// A box another candidate already has, to within a point spacing,
-	// gathers the same points into the same image: decoded once.
+	// gathers the same points into the same image: decoded once. The
+	// candidates by their centres' cells of that size: a box's equal is in
+	// its own cell or a neighbour (a city has thousands of candidates).
+	std::map<std::array<int64_t, 3>, std::vector<size_t>> byCell;
+	const auto cellOf = [&](const Eigen::Vector3d& p) {
+		const Eigen::Vector3d c = (p / len.spacing).array().floor();
+		return std::array<int64_t, 3>{static_cast<int64_t>(c.x()), static_cast<int64_t>(c.y()),
+									  static_cast<int64_t>(c.z())};
+	};
 	const auto proposed = [&](const OrientedBox& box) {
-		return std::any_of(candidates.begin(), candidates.end(),
-						   [&](const Candidate& o) { return sameBox(o.box, box, len.spacing); });
+		const std::array<int64_t, 3> c = cellOf(box.center);
+		for (int64_t dx = -1; dx <= 1; dx++)
+			for (int64_t dy = -1; dy <= 1; dy++)
+				for (int64_t dz = -1; dz <= 1; dz++)
+				{
+					const auto it = byCell.find({c[0] + dx, c[1] + dy, c[2] + dz});
+					if (it == byCell.end()) continue;
+					for (size_t k : it->second)
+						if (sameBox(candidates[k].box, box, len.spacing)) return true;
+				}
+		return false;
+	};
+	const auto propose = [&](const OrientedBox& box) {
+		byCell[cellOf(box.center)].push_back(candidates.size());
+		candidates.push_back({reports.size() - 1, box});
 	};
 	for (const Cluster& c : clusters)
 	{
@@ -85,7 +108,7 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 		rep.clusterPoints = c.points.size();
 		rep.verdict = why.value_or(Verdict::Candidate);
 		reports.push_back(rep);
-		if (!why) candidates.push_back({reports.size() - 1, c.box});
+		if (!why) propose(c.box);
 		if (why != Verdict::Squareness) continue;
 		std::vector<double> along;
 		for (uint32_t i : c.points) along.push_back((m.point(i) - c.box.center).dot(c.box.axes.col(0)));
@@ -96,7 +119,7 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 			const bool again = proposed(w);
 			rep.verdict = again ? Verdict::SameBox : Verdict::Candidate;
 			reports.push_back(rep);
-			if (!again) candidates.push_back({reports.size() - 1, w});
+			if (!again) propose(w);
 		}
 	}
 	return candidates;
