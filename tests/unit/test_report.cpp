@@ -141,3 +141,18 @@ TEST(Report, ARejectedCandidateListsEachReadAndWhyItFailed)
 					"by_chance (read tag36h11:422 code_not_in_points, aruco_6x6_1000:623 by_chance)"),
 			  1u);
 }
+
+TEST(Report, ACandidateWithAnEarlierOnesBoxNamesIt)
+{
+	Detections found = run().found;
+	ASSERT_FALSE(found.candidates.empty());
+	CandidateReport c = found.candidates.front();
+	c.image = cv::Mat();
+	c.verdict = Verdict::SameBox;
+	c.sameBoxAs = 0;
+	found.candidates.push_back(c);
+	const fs::path dir = freshDir("tagmap_report_same_box");
+	report::writeReport(dir.string(), {"walls.pcd", "synthetic", "tagmap detect walls.pcd", run().map, found,
+									   run().params});
+	EXPECT_EQ(count(readText(dir / "index.html"), "same_box as #0<"), 1u);
+}

@@ -81,7 +81,8 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 		return std::array<int64_t, 3>{static_cast<int64_t>(c.x()), static_cast<int64_t>(c.y()),
 									  static_cast<int64_t>(c.z())};
 	};
-	const auto proposed = [&](const OrientedBox& box) {
+	// The report index of the candidate with `box`, if there is one.
+	const auto proposed = [&](const OrientedBox& box) -> std::optional<size_t> {
 		const std::array<int64_t, 3> c = cellOf(box.center);
 		for (int64_t dx = -1; dx <= 1; dx++)
 			for (int64_t dy = -1; dy <= 1; dy++)
@@ -90,9 +91,9 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 					const auto it = byCell.find({c[0] + dx, c[1] + dy, c[2] + dz});
 					if (it == byCell.end()) continue;
 					for (size_t k : it->second)
-						if (sameBox(candidates[k].box, box, len.spacing)) return true;
+						if (sameBox(candidates[k].box, box, len.spacing)) return candidates[k].report;
 				}
-		return false;
+		return std::nullopt;
 	};
 	const auto propose = [&](const OrientedBox& box) {
 		byCell[cellOf(box.center)].push_back(candidates.size());
@@ -101,8 +102,8 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 	for (const Cluster& c : clusters)
 	{
 		std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
-		if (!why && proposed(c.box)) why = Verdict::SameBox;
 		CandidateReport rep;
+		if (!why && (rep.sameBoxAs = proposed(c.box))) why = Verdict::SameBox;
 		rep.center = c.box.center;
 		rep.extent = c.box.extent;
 		rep.clusterPoints = c.points.size();
@@ -116,10 +117,10 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 		{
 			rep.center = w.center;
 			rep.extent = w.extent;
-			const bool again = proposed(w);
-			rep.verdict = again ? Verdict::SameBox : Verdict::Candidate;
+			rep.sameBoxAs = proposed(w);
+			rep.verdict = rep.sameBoxAs ? Verdict::SameBox : Verdict::Candidate;
 			reports.push_back(rep);
-			if (!again) propose(w);
+			if (!rep.sameBoxAs) propose(w);
 		}
 	}
 	return candidates;

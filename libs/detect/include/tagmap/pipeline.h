@@ -14,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,9 @@ struct CandidateReport
 	 *  is its last rejection when no read became a tag. */
 	std::vector<Verdict> readVerdicts;
 	std::vector<std::string> decodedLabels;  // "tag36h11:3" per accepted decode
+	/** Verdict::SameBox: the index (in Detections::candidates) of the
+	 *  earlier candidate with this box, which was decoded instead. */
+	std::optional<size_t> sameBoxAs;
 };
 
 struct Detections
