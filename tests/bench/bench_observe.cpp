@@ -21,6 +21,8 @@
 // the path unless --sensor-view or --map-path does), to compare settings. The path is observe's: a single scan's
 // candidates from its own view (sensor_view.h), a window's from the map
 // path's stages 1-3; --sensor-view and --map-path choose either way.
+#include <sched.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -308,9 +310,17 @@ void benchSensor(const SensorRun& s, const Options& opt)
 		wrongId += ev.falseOf(FalseKind::WrongId);
 	}
 
-	std::printf("\n== %s, window %zu, %s: %zu scans, %.0f points per detection (median), families %s, 1 thread\n",
+	// The pipeline runs on one thread, but OpenCV's own loops (ArUco's
+	// thresholds and contours) use its thread pool on any CPU allowed.
+	cpu_set_t allowed;
+	const int cpus = sched_getaffinity(0, sizeof(allowed), &allowed) == 0 ? CPU_COUNT(&allowed) : 0;
+	const std::string cores = cpus == 1 ? "one CPU allowed"
+										: std::to_string(cpus) +
+											  " CPUs allowed: OpenCV's pool may use them; taskset -c 0 for one core";
+	std::printf("\n== %s, window %zu, %s: %zu scans, %.0f points per detection (median), families %s, 1 thread "
+				"(%s)\n",
 				s.label.c_str(), observeParams.window, params.sensorView.enabled ? "sensor view" : "map path",
-				report.perScan.size(), quantile(points, 0.5), opt.families.c_str());
+				report.perScan.size(), quantile(points, 0.5), opt.families.c_str(), cores.c_str());
 	std::printf("detect ms per scan: median %.2f, p90 %.2f, max %.2f; %.1f scans/s (all scans)\n", quantile(ms, 0.5),
 				quantile(ms, 0.9), quantile(ms, 1.0), report.perScan.size() / std::max(totalSeconds, 1e-9));
 	std::printf("%-20s %10s %10s %10s\n", "stage", "median ms", "p90 ms", "items in");
