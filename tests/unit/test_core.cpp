@@ -96,6 +96,25 @@ TEST(AtomicFile, FailedWriteLeavesOldFileUntouched)
 		EXPECT_EQ(e.path().filename().string().find("tagmap_test_atomic.txt.tmp"), std::string::npos);
 }
 
+TEST(TagFamily, EveryCodeDrawnInTurnIsItsOwnBitmap)
+{
+	// forEachTagBitmap redraws one grid: a cell the next code leaves alone
+	// would keep the last code's colour.
+	for (const char* n : {"tagStandard41h12", "tagCircle21h7", "aruco_5x5_100"})
+	{
+		int visited = 0, differing = 0;
+		forEachTagBitmap(n, [&](int id, const TagBitmap& bm) {
+			EXPECT_EQ(id, visited++);
+			const TagBitmap own = renderTagBitmap(n, id);
+			differing += own.pixels != bm.pixels || own.cells != bm.cells || own.borderStart != bm.borderStart ||
+						 own.borderCells != bm.borderCells;
+		});
+		EXPECT_EQ(visited, findFamily(n)->idCount) << n;
+		EXPECT_EQ(differing, 0) << n;
+	}
+	EXPECT_THROW(forEachTagBitmap("tag99h99", [](int, const TagBitmap&) {}), std::invalid_argument);
+}
+
 TEST(TagFamily, NestedArucoDictionariesNameTheSameMarker)
 {
 	EXPECT_TRUE(sameMarker("aruco_4x4_50", 7, "aruco_4x4_1000", 7));

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -229,55 +230,88 @@ const apriltag_family_t* drawingFamily(const std::string& name)
 }
 }  // namespace
 
-TagBitmap renderTagBitmap(const std::string& family, int id)
+namespace
+{
+const TagFamilyInfo& checkedFamily(const std::string& family)
 {
 	const TagFamilyInfo* info = findFamily(family);
 	if (!info)
 		throw std::invalid_argument(
 			"unknown tag family '" + family + "'; valid families: " + supportedFamilyList());
-	if (id < 0 || id >= info->idCount)
-		throw std::invalid_argument(
-			"tag id " + std::to_string(id) + " is out of range for " + family + " (0.." +
-			std::to_string(info->idCount - 1) + ")");
+	return *info;
+}
 
-	// Family pattern as the library draws it, 1 pixel per cell, 0/255.
-	std::vector<uint8_t> core;
-	int coreCells = 0, coreBorderStart = 0;
-	if (info->system == TagSystem::AprilTag)
-	{
-		const apriltag_family_t* fam = drawingFamily(family);
-		image_u8_t* im = apriltag_to_image(const_cast<apriltag_family_t*>(fam), id);
-		coreCells = im->width;
-		core.resize(coreCells * coreCells);
-		for (int r = 0; r < coreCells; r++)
-			for (int c = 0; c < coreCells; c++)
-				core[r * coreCells + c] = im->buf[r * im->stride + c] ? 255 : 0;
-		// libapriltag.so does not export image_u8_destroy; it is exactly these two frees.
-		free(im->buf);
-		free(im);
-		coreBorderStart = (fam->total_width - fam->width_at_border) / 2;
-	}
-	else
-	{
-		const int cellsAcross = info->borderCells;  // data bits + black border
-		cv::Mat img;
-		cv::aruco::drawMarker(arucoDictionary(family), id, cellsAcross, img, 1);
-		coreCells = cellsAcross;
-		core.resize(coreCells * coreCells);
-		for (int r = 0; r < coreCells; r++)
-			for (int c = 0; c < coreCells; c++) core[r * coreCells + c] = img.at<uint8_t>(r, c) > 127 ? 255 : 0;
-		coreBorderStart = 0;
-	}
+// An AprilTag code as libapriltag draws it, 1 pixel per cell, into `bm`'s
+// cells inside its quiet zone (every one of them written).
+void drawAprilTag(const apriltag_family_t* fam, int id, TagBitmap& bm)
+{
+	image_u8_t* im = apriltag_to_image(const_cast<apriltag_family_t*>(fam), id);
+	for (int r = 0; r < im->height; r++)
+		for (int c = 0; c < im->width; c++)
+			bm.pixels[(r + 1) * bm.cells + (c + 1)] = im->buf[r * im->stride + c] ? 255 : 0;
+	// libapriltag.so does not export image_u8_destroy; it is exactly these two frees.
+	free(im->buf);
+	free(im);
+}
 
-	// One white quiet-zone cell around the family's own drawing.
+// A white grid one quiet-zone cell wider than the family's own drawing.
+TagBitmap blankBitmap(const TagFamilyInfo& info, int coreCells, int coreBorderStart)
+{
 	TagBitmap bm;
 	bm.cells = coreCells + 2;
 	bm.borderStart = coreBorderStart + 1;
-	bm.borderCells = info->borderCells;
+	bm.borderCells = info.borderCells;
 	bm.pixels.assign(bm.cells * bm.cells, 255);
-	for (int r = 0; r < coreCells; r++)
-		for (int c = 0; c < coreCells; c++) bm.pixels[(r + 1) * bm.cells + (c + 1)] = core[r * coreCells + c];
 	return bm;
+}
+
+TagBitmap blankAprilTagBitmap(const TagFamilyInfo& info, const apriltag_family_t* fam)
+{
+	return blankBitmap(info, fam->total_width, (fam->total_width - fam->width_at_border) / 2);
+}
+}  // namespace
+
+TagBitmap renderTagBitmap(const std::string& family, int id)
+{
+	const TagFamilyInfo& info = checkedFamily(family);
+	if (id < 0 || id >= info.idCount)
+		throw std::invalid_argument(
+			"tag id " + std::to_string(id) + " is out of range for " + family + " (0.." +
+			std::to_string(info.idCount - 1) + ")");
+	if (info.system == TagSystem::AprilTag)
+	{
+		const apriltag_family_t* fam = drawingFamily(family);
+		TagBitmap bm = blankAprilTagBitmap(info, fam);
+		drawAprilTag(fam, id, bm);
+		return bm;
+	}
+	const int cellsAcross = info.borderCells;  // data bits + black border
+	cv::Mat img;
+	cv::aruco::drawMarker(arucoDictionary(family), id, cellsAcross, img, 1);
+	TagBitmap bm = blankBitmap(info, cellsAcross, 0);
+	for (int r = 0; r < cellsAcross; r++)
+		for (int c = 0; c < cellsAcross; c++)
+			bm.pixels[(r + 1) * bm.cells + (c + 1)] = img.at<uint8_t>(r, c) > 127 ? 255 : 0;
+	return bm;
+}
+
+void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit)
+{
+	const TagFamilyInfo& info = checkedFamily(family);
+	if (info.system != TagSystem::AprilTag)
+	{
+		for (int id = 0; id < info.idCount; id++) visit(id, renderTagBitmap(family, id));
+		return;
+	}
+	// One family lookup and one grid for all codes: a 65 k-code family drew
+	// in 65 ms one renderTagBitmap() at a time.
+	const apriltag_family_t* fam = drawingFamily(family);
+	TagBitmap bm = blankAprilTagBitmap(info, fam);
+	for (int id = 0; id < info.idCount; id++)
+	{
+		drawAprilTag(fam, id, bm);
+		visit(id, bm);
+	}
 }
 
 }  // namespace tagmap

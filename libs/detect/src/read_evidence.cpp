@@ -107,7 +107,7 @@ const std::vector<std::vector<uint8_t>>& familyCodes(const std::string& family)
 	auto& slot = cache[family];
 	if (slot) return *slot;
 	slot = std::make_unique<std::vector<std::vector<uint8_t>>>();
-	for (int id = 0; id < findFamily(family)->idCount; id++) slot->push_back(renderTagBitmap(family, id).pixels);
+	forEachTagBitmap(family, [&](int, const TagBitmap& bm) { slot->push_back(bm.pixels); });
 	return *slot;
 }
 

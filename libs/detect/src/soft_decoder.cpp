@@ -57,12 +57,17 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	std::vector<uint8_t> cellsWhite(allBytes * static_cast<size_t>(fc.idCount), 0);
 	const auto isWhite = [&](int id, size_t i) { return (cellsWhite[id * allBytes + i / 8] >> (i % 8)) & 1u; };
 	std::vector<int> whiteCount(all, 0);
-	for (int id = 0; id < fc.idCount; id++)
-	{
-		const TagBitmap bm = renderTagBitmap(family, id);
+	// Without branches: a code's cells are as random as its bits, and a
+	// mispredicted branch per cell was most of a 65 k-code table's time.
+	forEachTagBitmap(family, [&](int id, const TagBitmap& bm) {
+		uint8_t* bits = &cellsWhite[static_cast<size_t>(id) * allBytes];
 		for (size_t i = 0; i < all; i++)
-			if (bm.pixels[i]) whiteCount[i]++, cellsWhite[id * allBytes + i / 8] |= 1u << (i % 8);
-	}
+		{
+			const unsigned white = bm.pixels[i] != 0;
+			whiteCount[i] += static_cast<int>(white);
+			bits[i / 8] |= static_cast<uint8_t>(white << (i % 8));
+		}
+	});
 	// Cells that are the same in every code carry no information about the
 	// id; leaving them out makes the correlation tell codes apart.
 	for (size_t i = 0; i < all; i++)
@@ -72,8 +77,9 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	fc.white.assign(fc.whiteBytes * static_cast<size_t>(fc.idCount), 0);
 	for (int id = 0; id < fc.idCount; id++)
 	{
+		uint8_t* packed = &fc.white[static_cast<size_t>(id) * fc.whiteBytes];
 		for (size_t j = 0; j < n; j++)
-			if (isWhite(id, static_cast<size_t>(fc.informative[j]))) fc.white[id * fc.whiteBytes + j / 8] |= 1u << (j % 8);
+			packed[j / 8] |= static_cast<uint8_t>(isWhite(id, static_cast<size_t>(fc.informative[j])) << (j % 8));
 	}
 	// Cells every code shares: the border ring is black, the quiet zone white.
 	fc.borderMask.assign(all, 0);

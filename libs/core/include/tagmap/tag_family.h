@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -88,5 +89,11 @@ struct TagBitmap
 
 /** Throws std::invalid_argument on an unknown family or out-of-range id. */
 TagBitmap renderTagBitmap(const std::string& family, int id);
+
+/** visit(id, bitmap) for every id of `family`, in id order: renderTagBitmap's
+ *  bitmaps, drawn one after another into the same grid (valid during the
+ *  call only). For tables of every code of a family (65 k codes for the
+ *  largest). Throws std::invalid_argument on an unknown family. */
+void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit);
 
 }  // namespace tagmap
