@@ -103,7 +103,8 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 	{
 		std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
 		CandidateReport rep;
-		if (!why && (rep.sameBoxAs = proposed(c.box))) why = Verdict::SameBox;
+		if (!why) rep.sameBoxAs = proposed(c.box);
+		if (rep.sameBoxAs) why = Verdict::SameBox;
 		rep.center = c.box.center;
 		rep.extent = c.box.extent;
 		rep.clusterPoints = c.points.size();

@@ -58,7 +58,7 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	const auto isWhite = [&](int id, size_t i) { return (cellsWhite[id * allBytes + i / 8] >> (i % 8)) & 1u; };
 	std::vector<int> whiteCount(all, 0);
 	// Without branches: a code's cells are as random as its bits, and a
-	// mispredicted branch per cell was most of a 65 k-code table's time.
+	// mispredicted branch per cell was a third of a 65 k-code table's time.
 	forEachTagBitmap(family, [&](int id, const TagBitmap& bm) {
 		uint8_t* bits = &cellsWhite[static_cast<size_t>(id) * allBytes];
 		for (size_t i = 0; i < all; i++)

@@ -144,8 +144,8 @@ std::string rejectedSection(const Detections& found, size_t maxListed)
 				  format("%.3f x %.3f x %.3f", c.extent.x(), c.extent.y(), c.extent.z()), vec3(c.center, "%.2f")});
 	}
 	std::string h = "<h2>Clusters without an image</h2>\n<p>Rejected by the candidate filter before any image was "
-					"made (size, squareness, not_flat), decoded as an earlier candidate with the same box (same_box as #N) or "
-					"whose points are not planar; biggest first.</p>\n";
+					"made (size, squareness, not_flat), with an earlier candidate's box and decoded there "
+					"(same_box as #N), or whose points are not planar; biggest first.</p>\n";
 	if (idx.empty()) return h + "<p>None.</p>\n";
 	h += t.html();
 	if (idx.size() > shown) h += "<p>" + htmlEscape(format("%zu more not listed.", idx.size() - shown)) + "</p>\n";
