@@ -66,44 +66,63 @@ size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, cons
 	return kept;
 }
 
+namespace
+{
+// The candidates proposed so far, by their centres' cells of one point
+// spacing: a box another candidate already has, to within a spacing,
+// gathers the same points into the same image and is decoded once. Its
+// equal's centre is in its own cell or a neighbour (a city has thousands
+// of candidates).
+class ProposedBoxes
+{
+   public:
+	explicit ProposedBoxes(double spacing) : spacing_(spacing) {}
+
+	void add(const Candidate& c) { byCell_[cellOf(c.box.center)].push_back(c); }
+
+	/** The report index of a candidate with `box` (sameBox()), if any. */
+	std::optional<size_t> reportWith(const OrientedBox& box) const
+	{
+		const Cell c = cellOf(box.center);
+		for (int64_t dx = -1; dx <= 1; dx++)
+			for (int64_t dy = -1; dy <= 1; dy++)
+				for (int64_t dz = -1; dz <= 1; dz++)
+				{
+					const auto it = byCell_.find({c[0] + dx, c[1] + dy, c[2] + dz});
+					if (it == byCell_.end()) continue;
+					for (const Candidate& o : it->second)
+						if (sameBox(o.box, box, spacing_)) return o.report;
+				}
+		return std::nullopt;
+	}
+
+   private:
+	using Cell = std::array<int64_t, 3>;
+	Cell cellOf(const Eigen::Vector3d& p) const
+	{
+		const Eigen::Vector3d c = (p / spacing_).array().floor();
+		return {static_cast<int64_t>(c.x()), static_cast<int64_t>(c.y()), static_cast<int64_t>(c.z())};
+	}
+	double spacing_;
+	std::map<Cell, std::vector<Candidate>> byCell_;
+};
+}  // namespace
+
 std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Cluster>& clusters,
 										 const CandidateFilterParams& cf, const DerivedLengths& len,
 										 std::vector<CandidateReport>& reports)
 {
 	std::vector<Candidate> candidates;
-	// A box another candidate already has, to within a point spacing,
-	// gathers the same points into the same image: decoded once. The
-	// candidates by their centres' cells of that size: a box's equal is in
-	// its own cell or a neighbour (a city has thousands of candidates).
-	std::map<std::array<int64_t, 3>, std::vector<size_t>> byCell;
-	const auto cellOf = [&](const Eigen::Vector3d& p) {
-		const Eigen::Vector3d c = (p / len.spacing).array().floor();
-		return std::array<int64_t, 3>{static_cast<int64_t>(c.x()), static_cast<int64_t>(c.y()),
-									  static_cast<int64_t>(c.z())};
-	};
-	// The report index of the candidate with `box`, if there is one.
-	const auto proposed = [&](const OrientedBox& box) -> std::optional<size_t> {
-		const std::array<int64_t, 3> c = cellOf(box.center);
-		for (int64_t dx = -1; dx <= 1; dx++)
-			for (int64_t dy = -1; dy <= 1; dy++)
-				for (int64_t dz = -1; dz <= 1; dz++)
-				{
-					const auto it = byCell.find({c[0] + dx, c[1] + dy, c[2] + dz});
-					if (it == byCell.end()) continue;
-					for (size_t k : it->second)
-						if (sameBox(candidates[k].box, box, len.spacing)) return candidates[k].report;
-				}
-		return std::nullopt;
-	};
+	ProposedBoxes proposed(len.spacing);
 	const auto propose = [&](const OrientedBox& box) {
-		byCell[cellOf(box.center)].push_back(candidates.size());
 		candidates.push_back({reports.size() - 1, box});
+		proposed.add(candidates.back());
 	};
 	for (const Cluster& c : clusters)
 	{
 		std::optional<Verdict> why = rejectCandidate(c.box, len.candidateBand, len.planeNoise, cf);
 		CandidateReport rep;
-		if (!why) rep.sameBoxAs = proposed(c.box);
+		if (!why) rep.sameBoxAs = proposed.reportWith(c.box);
 		if (rep.sameBoxAs) why = Verdict::SameBox;
 		rep.center = c.box.center;
 		rep.extent = c.box.extent;
@@ -118,7 +137,7 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 		{
 			rep.center = w.center;
 			rep.extent = w.extent;
-			rep.sameBoxAs = proposed(w);
+			rep.sameBoxAs = proposed.reportWith(w);
 			rep.verdict = rep.sameBoxAs ? Verdict::SameBox : Verdict::Candidate;
 			reports.push_back(rep);
 			if (!rep.sameBoxAs) propose(w);
