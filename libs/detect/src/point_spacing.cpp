@@ -101,11 +101,19 @@ Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, 
 					   static_cast<int64_t>(std::floor((ys[i] - lo.y()) / cell)) + dy,
 					   static_cast<int64_t>(std::floor((zs[i] - lo.z()) / cell)) + dz);
 	};
-	CellTable cells(27 * samples.size());
-	for (size_t s : samples)
-		for (int dz = -1; dz <= 1; dz++)
-			for (int dy = -1; dy <= 1; dy++)
-				for (int dx = -1; dx <= 1; dx++) cells.insert(key(s, dx, dy, dz));
+	// The cells bucketed: the samples' blocks (27 cells each), so that a
+	// large map's points far from every sample are skipped; or, when there
+	// are fewer points than block cells (a scan), every point's own cell.
+	// The same points fall in a sample's block either way.
+	const bool everyPoint = n <= 27 * samples.size();
+	CellTable cells(everyPoint ? n : 27 * samples.size());
+	if (everyPoint)
+		for (size_t i = 0; i < n; i++) cells.insert(key(i, 0, 0, 0));
+	else
+		for (size_t s : samples)
+			for (int dz = -1; dz <= 1; dz++)
+				for (int dy = -1; dy <= 1; dy++)
+					for (int dx = -1; dx <= 1; dx++) cells.insert(key(s, dx, dy, dz));
 
 	// (bucket, point) pairs per chunk of the map, in point order.
 	const size_t limit = 200 * samples.size() + 100000;
@@ -144,21 +152,27 @@ Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, 
 	nn.reserve(samples.size());
 	for (size_t s : samples)
 	{
+		// The nearest by squared distance; std::hypot (whose overflow-safe
+		// scaling cost more than the rest of the search) only for it, so the
+		// spacing is the float distance it always was.
 		double best = std::numeric_limits<double>::max();
+		size_t nearest = s;
 		for (int dz = -1; dz <= 1; dz++)
 			for (int dy = -1; dy <= 1; dy++)
 				for (int dx = -1; dx <= 1; dx++)
 				{
 					const int64_t id = cells.find(key(s, dx, dy, dz));
+					if (id < 0) continue;  // an empty cell (only bucketed cells are kept)
 					for (uint32_t k = start[id]; k < start[id + 1]; k++)
 					{
 						const uint32_t j = members[k];
-						if (j == s) continue;
-						const double d = std::hypot(xs[j] - xs[s], ys[j] - ys[s], zs[j] - zs[s]);
-						if (d > 0) best = std::min(best, d);
+						const double ex = xs[j] - xs[s], ey = ys[j] - ys[s], ez = zs[j] - zs[s];
+						const double d2 = ex * ex + ey * ey + ez * ez;
+						if (d2 > 0 && d2 < best) best = d2, nearest = j;
 					}
 				}
-		nn.push_back(best);
+		nn.push_back(nearest == s ? std::numeric_limits<double>::max()
+								  : std::hypot(xs[nearest] - xs[s], ys[nearest] - ys[s], zs[nearest] - zs[s]));
 	}
 	median = medianInPlace(nn);
 	return median <= cell ? Pass::Resolved : Pass::TooFine;
