@@ -1,10 +1,12 @@
 #include "tagmap/read_evidence.h"
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 
 #include "tagmap/tag_family.h"
 #include "tagmap/tag_quads.h"
@@ -97,17 +99,27 @@ CellThreshold thresholdOf(const std::vector<float>& sample, const TagBitmap& bm,
 	return th;
 }
 
-// Every code of a family as its bitmap, cached: the nearest-code search
-// compares a read with all of them.
-const std::vector<std::vector<uint8_t>>& familyCodes(const std::string& family)
+// A family's grid as bits, cell k at bit k (the largest grid, tagCircle49h12's
+// with its quiet zone, has 13 x 13 cells).
+using CellBits = std::bitset<256>;
+
+// Every code of a family as its bitmap's bits, cached: the nearest-code
+// search compares a read with all of them (65 k for the largest family),
+// each in a few XORs and popcounts.
+const std::vector<CellBits>& familyCodes(const std::string& family)
 {
 	static std::mutex mutex;
-	static std::map<std::string, std::unique_ptr<std::vector<std::vector<uint8_t>>>> cache;
+	static std::map<std::string, std::unique_ptr<std::vector<CellBits>>> cache;
 	std::lock_guard<std::mutex> lock(mutex);
 	auto& slot = cache[family];
 	if (slot) return *slot;
-	slot = std::make_unique<std::vector<std::vector<uint8_t>>>();
-	forEachTagBitmap(family, [&](int, const TagBitmap& bm) { slot->push_back(bm.pixels); });
+	slot = std::make_unique<std::vector<CellBits>>();
+	forEachTagBitmap(family, [&](int, const TagBitmap& bm) {
+		if (bm.pixels.size() > CellBits().size()) throw std::logic_error("tag grid larger than 256 cells: " + family);
+		CellBits bits;
+		for (size_t k = 0; k < bm.pixels.size(); k++) bits[k] = bm.pixels[k] != 0;
+		slot->push_back(bits);
+	});
 	return *slot;
 }
 
@@ -265,38 +277,42 @@ CodeDistances codeDistances(const std::vector<float>& cells, const std::string& 
 	if (!th.ok) return d;
 	// The code cells, and those the read shows clearly with their colours.
 	const CellRoles& roles = rolesOf(family);
-	std::vector<size_t> codeCells, clear;
-	std::vector<uint8_t> white(cells.size(), 0);
+	std::vector<uint8_t> clear(cells.size(), 0), white(cells.size(), 0);
+	int clearCount = 0;
 	for (size_t k = 0; k < cells.size(); k++)
-		if (roles.role[k] == 0)
+		if (roles.role[k] == 0 && !std::isnan(cells[k]) && std::abs(cells[k] - th.threshold) >= th.unsure)
 		{
-			codeCells.push_back(k);
-			if (!std::isnan(cells[k]) && std::abs(cells[k] - th.threshold) >= th.unsure)
-				clear.push_back(k), white[k] = cells[k] > th.threshold;
+			clear[k] = 1, white[k] = cells[k] > th.threshold, clearCount++;
+			d.toOwn += white[k] != (bm.pixels[k] != 0);
 		}
-	for (size_t k : clear) d.toOwn += white[k] != (bm.pixels[k] != 0);
 	// Every other code in every orientation: the read in orientation o shows
-	// cell perm[k] of the read where the code has cell k.
-	d.toNearestOther = static_cast<int>(clear.size()) + 1;
-	const std::vector<std::vector<uint8_t>>& codes = familyCodes(family);
+	// cell perm[j] of the read where the code has cell j. The read is turned
+	// into each code's cell order once per orientation (its clear cells, their
+	// colours, its code cells and its own code's colours there), so a code's
+	// distance is a few XORs and popcounts.
+	d.toNearestOther = clearCount + 1;
+	const std::vector<CellBits>& codes = familyCodes(family);
 	for (int o = 0; o < orientations; o++)
 	{
 		const std::vector<int>& perm = cellPermutation(bm.cells, o);
-		std::vector<int> inverse(perm.size());
-		for (size_t k = 0; k < perm.size(); k++) inverse[static_cast<size_t>(perm[k])] = static_cast<int>(k);
+		CellBits clearAt, whiteAt, codeAt, ownAt;
+		for (size_t j = 0; j < perm.size(); j++)
+		{
+			const size_t k = static_cast<size_t>(perm[j]);
+			clearAt[j] = clear[k] != 0;
+			whiteAt[j] = white[k] != 0;
+			codeAt[j] = roles.role[k] == 0;
+			ownAt[j] = bm.pixels[k] != 0;
+		}
 		for (size_t other = 0; other < codes.size(); other++)
 		{
 			if (static_cast<int>(other) == id && o == 0) continue;
-			const auto codeWhite = [&](size_t k) { return codes[other][static_cast<size_t>(inverse[k])] != 0; };
-			int dist = 0;
-			for (size_t k : clear)
-				if ((dist += white[k] != codeWhite(k)) >= d.toNearestOther) break;
+			const int dist = static_cast<int>(((codes[other] ^ whiteAt) & clearAt).count());
 			if (dist >= d.toNearestOther) continue;
 			// A code that, turned, is the read's own code cell for cell (the
 			// original ArUco dictionary has such pairs) is no rival: no read
 			// can tell them apart, and the decoder's choice is the family's.
-			const bool same = std::all_of(codeCells.begin(), codeCells.end(),
-										  [&](size_t k) { return codeWhite(k) == (bm.pixels[k] != 0); });
+			const bool same = ((codes[other] ^ ownAt) & codeAt).none();
 			if (!same) d.toNearestOther = dist, d.nearestOtherId = static_cast<int>(other);
 		}
 	}
