@@ -68,6 +68,7 @@ int runObserve(int argc, char** argv)
 		if (a.has("--sensor-view")) params.sensorView.enabled = true;
 		if (a.has("--map-path")) params.sensorView.enabled = false;
 		checkOutputWritable(out);
+		localize::keepScanMemoryForReuse();
 		const bool quiet = a.has("--quiet");
 		report::ProgressPrinter progress(report::ProgressParams::unlessQuiet(quiet));
 		progress.update("reading", 0, 0);

@@ -378,6 +378,7 @@ int main(int argc, char** argv)
 	}
 	try
 	{
+		localize::keepScanMemoryForReuse();  // as `tagmap observe` does
 		const std::map<std::string, SensorRun> runs = {
 			{"spinning", {"spinning 64 x 512, 10 Hz", "robot", {{"robot_beams", 64}, {"robot_columns", 512}}, 1}},
 			{"spinning128", {"spinning 128 x 1024, 10 Hz", "robot", {}, 1}},

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "tagmap/errors.h"
 #include "tagmap/localize/rawlog_odometry.h"
@@ -186,6 +189,16 @@ mrpt::obs::CRawlog observeRawlog(const mrpt::obs::CRawlog& in, const Pipeline& p
 	report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	if (reportOut) *reportOut = report;
 	return out;
+}
+
+void keepScanMemoryForReuse()
+{
+#if defined(__GLIBC__)
+	// Setting either disables glibc's own adaptive thresholds: both are set.
+	// 32 MB is glibc's largest mmap threshold on 64-bit systems.
+	mallopt(M_MMAP_THRESHOLD, 32 << 20);
+	mallopt(M_TRIM_THRESHOLD, 64 << 20);
+#endif
 }
 
 }  // namespace tagmap::localize

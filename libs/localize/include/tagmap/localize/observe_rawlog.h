@@ -67,6 +67,15 @@ struct ObserveReport
 	double medianDetectSeconds() const;
 };
 
+/** For a program that observes scans at sensor rate: keeps up to 64 MB of
+ *  freed memory in the process for the next scan. Each detection allocates
+ *  and frees the same few megabytes of images; by default glibc serves
+ *  such blocks by mmap or returns them from the heap's top, and every scan
+ *  faults the same pages in again (0.4 ms of a 10 ms scan on one core,
+ *  docs/PERFORMANCE.md). Process-wide (mallopt): call it from `main`, not
+ *  from a library; a no-op without glibc. */
+void keepScanMemoryForReuse();
+
 /** Returns a copy of `in` with the tag observations added. Observations
  *  without intensity are passed through untouched. `progress`: scans done
  *  and in all, after each scan. */
