@@ -1,6 +1,7 @@
 #include "tagmap/tag_quads.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -12,40 +13,66 @@ namespace tagmap
 {
 namespace
 {
-double sampleBilinear(const cv::Mat& img, double x, double y)
+// An 8-bit image as the bilinear sampler reads it: rows, and the last
+// position with a pixel to its right and below, taken once per image (the
+// border-square search samples ~18 000 times per square it fits).
+struct GrayPixels
+{
+	explicit GrayPixels(const cv::Mat& img)
+		: data(img.data), step(img.step[0]), lastX(img.cols - 1), lastY(img.rows - 1)
+	{
+	}
+	const uint8_t* data;
+	size_t step;
+	double lastX, lastY;
+};
+
+// Grey levels as doubles: a table lookup is cheaper than the conversion,
+// and the values are the same.
+const std::array<double, 256> kGreyLevels = [] {
+	std::array<double, 256> v{};
+	for (int i = 0; i < 256; i++) v[static_cast<size_t>(i)] = i;
+	return v;
+}();
+
+double sampleBilinear(const GrayPixels& img, double x, double y)
 {
 	// Image coordinates with pixel centres on half-integers.
 	x -= 0.5;
 	y -= 0.5;
-	if (x < 0 || y < 0 || x >= img.cols - 1 || y >= img.rows - 1) return -1;
+	if (x < 0 || y < 0 || x >= img.lastX || y >= img.lastY) return -1;
 	const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
 	const double fx = x - x0, fy = y - y0;
-	const uint8_t* a = img.ptr<uint8_t>(y0);
-	const uint8_t* b = img.ptr<uint8_t>(y0 + 1);
-	return (1 - fy) * ((1 - fx) * a[x0] + fx * a[x0 + 1]) + fy * ((1 - fx) * b[x0] + fx * b[x0 + 1]);
+	const uint8_t* a = img.data + img.step * static_cast<size_t>(y0);
+	const uint8_t* b = a + img.step;
+	const std::array<double, 256>& g = kGreyLevels;
+	return (1 - fy) * ((1 - fx) * g[a[x0]] + fx * g[a[x0 + 1]]) + fy * ((1 - fx) * g[b[x0]] + fx * g[b[x0 + 1]]);
 }
 
 /** Mean of the image along a square's outline just outside minus just
  *  inside it: a tag's border square is dark inside a light quiet zone. */
-double borderContrast(const cv::Mat& img, double cx, double cy, double half, double angle)
+double borderContrast(const GrayPixels& img, double cx, double cy, double half, double angle)
 {
 	const double d = 0.12 * half;  // about half a cell
 	// The sides' outward normals: the first one turned by quarter turns
 	// (one sine and cosine per square; the search evaluates ~90 squares).
 	const double c = std::cos(angle), s = std::sin(angle);
 	const double normals[4][2] = {{c, s}, {-s, c}, {-c, -s}, {s, -c}};
+	// Where along a side the samples lie, the same for every side.
+	std::array<double, 13> along;
+	for (int k = -6; k <= 6; k++) along[static_cast<size_t>(k + 6)] = half * 0.85 * k / 6.0;
 	double sum = 0;
 	int n = 0;
 	for (const auto& normal : normals)
 	{
 		// Outward normal of this side, and the direction along it.
 		const double nx = normal[0], ny = normal[1], tx = -ny, ty = nx;
-		for (int k = -6; k <= 6; k++)
+		const double midX = cx + nx * half, midY = cy + ny * half, offX = nx * d, offY = ny * d;
+		for (const double t : along)
 		{
-			const double t = half * 0.85 * k / 6.0;
-			const double px = cx + nx * half + tx * t, py = cy + ny * half + ty * t;
-			const double out = sampleBilinear(img, px + nx * d, py + ny * d);
-			const double in = sampleBilinear(img, px - nx * d, py - ny * d);
+			const double px = midX + tx * t, py = midY + ty * t;
+			const double out = sampleBilinear(img, px + offX, py + offY);
+			const double in = sampleBilinear(img, px - offX, py - offY);
 			if (out < 0 || in < 0) continue;
 			sum += out - in;
 			n++;
@@ -59,8 +86,9 @@ double borderContrast(const cv::Mat& img, double cx, double cy, double half, dou
  *  contrast along its outline, by coordinate search from `seed` with
  *  shrinking steps. Blur moves a border's thresholded outline but not the
  *  place where light turns dark fastest. */
-std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& smooth, const cv::RotatedRect& seed)
+std::vector<cv::Point2f> fitBorderSquare(const cv::Mat& smoothImage, const cv::RotatedRect& seed)
 {
+	const GrayPixels smooth(smoothImage);
 	double x[4] = {seed.center.x + 0.5, seed.center.y + 0.5, 0.25 * (seed.size.width + seed.size.height),
 				   seed.angle * M_PI / 180};
 	double best = borderContrast(smooth, x[0], x[1], x[2], x[3]);
@@ -238,6 +266,7 @@ std::vector<float> sampleGrid(const cv::Mat& gray8, const cv::Mat* measured, con
 	std::vector<cv::Point2f> dst;
 	for (const auto& p : q) dst.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
 	const cv::Matx33d H = cv::getPerspectiveTransform(src, dst);
+	const GrayPixels pixels(gray8);
 	std::vector<float> sample(static_cast<size_t>(cells * cells));
 	for (int r = 0; r < cells; r++)
 		for (int col = 0; col < cells; col++)
@@ -250,7 +279,7 @@ std::vector<float> sampleGrid(const cv::Mat& gray8, const cv::Mat* measured, con
 				{
 					const cv::Vec3d p = H * cv::Vec3d(col + dx, r + dy, 1.0);
 					const double x = p[0] / p[2], y = p[1] / p[2];
-					const double v = sampleBilinear(gray8, x, y);
+					const double v = sampleBilinear(pixels, x, y);
 					if (v < 0) continue;
 					cnt++;
 					if (measured && !measured->at<uint8_t>(static_cast<int>(y), static_cast<int>(x))) continue;
