@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <random>
+
 #include "synthetic_wall.h"
 #include "tagmap/io/point_cloud_io.h"
 #include "tagmap/pipeline.h"
 #include "tagmap/point_spacing.h"
+#include "tagmap/quantile.h"
 #include "tagmap/tag_pose.h"
 
 using namespace tagmap;
@@ -38,6 +43,45 @@ TEST(PointSpacing, MatchesGridSpacing)
 										   map.getPointsBufferRef_z().data(), map.size());
 	EXPECT_GT(sp, 0.4 * s.spacing);
 	EXPECT_LT(sp, 1.2 * s.spacing);
+}
+
+// The spacing is exact: the median over the evenly strided samples of each
+// one's nearest other point among all points, whichever way the points are
+// bucketed (every point's own cell for few points, the samples' blocks for
+// many).
+TEST(PointSpacing, IsTheSamplesExactMedianNearestDistanceForFewAndManyPoints)
+{
+	std::mt19937 rng(7);
+	std::uniform_real_distribution<float> along(0, 2), noise(-0.004f, 0.004f);
+	std::vector<float> xs, ys, zs;
+	for (int i = 0; i < 3000; i++)
+	{
+		// Two walls at right angles, unevenly sampled, with range noise.
+		const float a = along(rng), b = along(rng);
+		const bool first = i % 2 == 0;
+		xs.push_back(first ? a : noise(rng));
+		ys.push_back(first ? noise(rng) : a);
+		zs.push_back(b);
+	}
+	const size_t n = xs.size();
+	for (const size_t samples : {200, 100})  // 3000 points: below 27 x 200, above 27 x 100
+	{
+		const size_t stride = n / samples;
+		std::vector<double> nearest;
+		for (size_t i = stride / 2; i < n; i += stride)
+		{
+			double best = std::numeric_limits<double>::max();
+			for (size_t j = 0; j < n; j++)
+			{
+				const double d = std::hypot(xs[j] - xs[i], ys[j] - ys[i], zs[j] - zs[i]);
+				if (j != i && d > 0) best = std::min(best, d);
+			}
+			nearest.push_back(best);
+		}
+		PointSpacingParams p;
+		p.samples = samples;
+		EXPECT_EQ(estimatePointSpacing(xs.data(), ys.data(), zs.data(), n, p, 1), medianInPlace(nearest)) << samples;
+	}
 }
 
 TEST(Pipeline, FindsTagOnWallInAnyOrientation)

@@ -275,7 +275,7 @@ CodeDistances codeDistances(const std::vector<float>& cells, const std::string& 
 	if (cells.size() != bm.pixels.size()) return d;
 	const CellThreshold th = thresholdOf(cells, bm, p);
 	if (!th.ok) return d;
-	// The code cells, and those the read shows clearly with their colours.
+	// The code cells the read shows clearly, with their colours.
 	const CellRoles& roles = rolesOf(family);
 	std::vector<uint8_t> clear(cells.size(), 0), white(cells.size(), 0);
 	int clearCount = 0;

@@ -29,7 +29,7 @@ struct GrayPixels
 
 // Grey levels as doubles: a table lookup is cheaper than the conversion,
 // and the values are the same.
-const std::array<double, 256> kGreyLevels = [] {
+const std::array<double, 256> kGrayLevels = [] {
 	std::array<double, 256> v{};
 	for (int i = 0; i < 256; i++) v[static_cast<size_t>(i)] = i;
 	return v;
@@ -45,7 +45,7 @@ double sampleBilinear(const GrayPixels& img, double x, double y)
 	const double fx = x - x0, fy = y - y0;
 	const uint8_t* a = img.data + img.step * static_cast<size_t>(y0);
 	const uint8_t* b = a + img.step;
-	const std::array<double, 256>& g = kGreyLevels;
+	const std::array<double, 256>& g = kGrayLevels;
 	return (1 - fy) * ((1 - fx) * g[a[x0]] + fx * g[a[x0 + 1]]) + fy * ((1 - fx) * g[b[x0]] + fx * g[b[x0 + 1]]);
 }
 
