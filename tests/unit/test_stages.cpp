@@ -905,6 +905,92 @@ TEST(ReadEvidence, ARealTagsReadIsNearerItsOwnCodeThanAnyOther)
 	EXPECT_EQ(asRival.nearestOtherId, 0);
 }
 
+// A code cell is one that differs between the family's codes: counted over
+// every code of every family (aruco_original's id bits are its data bits,
+// and its highest two turn only at ids 256 and 512; tagStandard52h13 and
+// tagCircle49h12 each have a bit that their first 256 codes never turn).
+TEST(ReadEvidence, CodeCellsAreTheCellsThatVaryOverEveryCode)
+{
+	for (const TagFamilyInfo& info : supportedFamilies())
+	{
+		std::vector<uint8_t> first;
+		std::vector<bool> varies;
+		forEachTagBitmap(info.name, [&](int id, const TagBitmap& bm) {
+			if (id == 0) first = bm.pixels, varies.assign(bm.pixels.size(), false);
+			for (size_t k = 0; k < bm.pixels.size(); k++) varies[k] = varies[k] || bm.pixels[k] != first[k];
+		});
+		std::vector<float> exact(first.size());
+		for (size_t k = 0; k < first.size(); k++) exact[k] = first[k] ? 0.9f : 0.1f;
+		const ReadEvidence e = judgeCells(exact, info.name, 0, 0, 8, {info.name}, {});
+		EXPECT_EQ(e.codeBits, std::count(varies.begin(), varies.end(), true)) << info.name;
+	}
+}
+
+// codeDistances() against the definition, cell by cell: noisy reads of a
+// code with unmeasured cells, in families with and without symmetric codes
+// (the original ArUco dictionary has codes that are another turned).
+TEST(ReadEvidence, CodeDistancesAreTheClearCellsThatDifferFromEachCode)
+{
+	std::mt19937 rng(3);
+	std::normal_distribution<float> noise(0, 0.25f);
+	std::uniform_real_distribution<float> chance(0, 1);
+	const ReadEvidenceParams p;
+	for (const std::string family : {"tag36h11", "aruco_original"})
+	{
+		std::vector<std::vector<uint8_t>> codes;
+		forEachTagBitmap(family, [&](int, const TagBitmap& bm) { codes.push_back(bm.pixels); });
+		// Code cells: those that differ between the family's codes.
+		std::vector<bool> codeCell(codes[0].size(), false);
+		for (const auto& c : codes)
+			for (size_t k = 0; k < c.size(); k++) codeCell[k] = codeCell[k] || c[k] != codes[0][k];
+		for (const int id : {0, 5, 17})
+		{
+			const TagBitmap bm = renderTagBitmap(family, id);
+			std::vector<float> cells(bm.pixels.size());
+			for (size_t k = 0; k < cells.size(); k++)
+				cells[k] = chance(rng) < 0.15f ? std::numeric_limits<float>::quiet_NaN()
+											   : (bm.pixels[k] ? 1.0f : 0.0f) + noise(rng);
+			// The threshold halfway between the read's mean black and white
+			// cells (by the code's own colours), cells within the erasure band
+			// of it unclear.
+			double black = 0, white = 0;
+			int nb = 0, nw = 0;
+			for (size_t k = 0; k < cells.size(); k++)
+				if (!std::isnan(cells[k])) (bm.pixels[k] ? white : black) += cells[k], (bm.pixels[k] ? nw : nb)++;
+			const double threshold = 0.5 * (black / nb + white / nw), unsure = p.erasureBand * (white / nw - black / nb);
+			const auto clear = [&](size_t k) {
+				return codeCell[k] && !std::isnan(cells[k]) && std::abs(cells[k] - threshold) >= unsure;
+			};
+			CodeDistances want;
+			int clearCount = 0;
+			for (size_t k = 0; k < cells.size(); k++)
+				if (clear(k)) clearCount++, want.toOwn += (cells[k] > threshold) != (bm.pixels[k] != 0);
+			want.toNearestOther = clearCount + 1;
+			for (int o = 0; o < 8; o++)
+			{
+				const std::vector<int>& perm = cellPermutation(bm.cells, o);
+				for (size_t other = 0; other < codes.size(); other++)
+				{
+					if (static_cast<int>(other) == id && o == 0) continue;
+					int dist = 0;
+					bool same = true;
+					for (size_t j = 0; j < perm.size(); j++)
+					{
+						const size_t k = static_cast<size_t>(perm[j]);
+						if (clear(k)) dist += (cells[k] > threshold) != (codes[other][j] != 0);
+						if (codeCell[k]) same = same && (codes[other][j] != 0) == (bm.pixels[k] != 0);
+					}
+					if (dist < want.toNearestOther && !same) want.toNearestOther = dist, want.nearestOtherId = static_cast<int>(other);
+				}
+			}
+			const CodeDistances got = codeDistances(cells, family, id, 8, p);
+			EXPECT_EQ(got.toOwn, want.toOwn) << family << " " << id;
+			EXPECT_EQ(got.toNearestOther, want.toNearestOther) << family << " " << id;
+			EXPECT_EQ(got.nearestOtherId, want.nearestOtherId) << family << " " << id;
+		}
+	}
+}
+
 TEST(ReadEvidence, InnerCellsOfATag36h11ReadAsA4x4ArucoAreRejected)
 {
 	// The 6x6 data cells of a tag36h11 hold black-bordered 4x4 squares that

@@ -13,6 +13,7 @@
 #include <opencv2/aruco.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -290,6 +291,67 @@ TagBitmap renderTagBitmap(const std::string& family, int id)
 		for (int c = 0; c < cellsAcross; c++)
 			bm.pixels[(r + 1) * bm.cells + (c + 1)] = img.at<uint8_t>(r, c) > 127 ? 255 : 0;
 	return bm;
+}
+
+namespace
+{
+// A code XOR code 0, as bytes: AprilTag's 64-bit word, or one byte per cell
+// of an ArUco marker (at most 7 x 7).
+using TurnedBits = std::array<uint8_t, 64>;
+
+// Ids, ascending, each turning a bit that no id before it turned, until
+// every bit some code turns is turned. `turnedOf(id)`: code `id` XOR code 0.
+std::vector<int> firstIdsTurning(int codes, const std::function<TurnedBits(int id)>& turnedOf)
+{
+	TurnedBits ever{}, before{};
+	for (int id = 1; id < codes; id++)
+	{
+		const TurnedBits t = turnedOf(id);
+		for (size_t k = 0; k < ever.size(); k++) ever[k] |= t[k];
+	}
+	std::vector<int> ids;
+	for (int id = 1; id < codes && before != ever; id++)
+	{
+		const TurnedBits t = turnedOf(id);
+		bool fresh = false;
+		for (size_t k = 0; k < before.size(); k++)
+		{
+			fresh = fresh || (t[k] & ~before[k]) != 0;
+			before[k] |= t[k];
+		}
+		if (fresh) ids.push_back(id);
+	}
+	return ids;
+}
+}  // namespace
+
+std::vector<int> idsTurningEveryCodeBit(const std::string& family)
+{
+	const TagFamilyInfo& info = checkedFamily(family);
+	// The code words, not the drawings.
+	if (info.system == TagSystem::AprilTag)
+	{
+		const apriltag_family_t* fam = drawingFamily(family);
+		return firstIdsTurning(static_cast<int>(fam->ncodes), [&](int id) {
+			TurnedBits t{};
+			const uint64_t x = fam->codes[id] ^ fam->codes[0];
+			for (size_t k = 0; k < 8; k++) t[k] = static_cast<uint8_t>((x >> (8 * k)) & 0xff);
+			return t;
+		});
+	}
+	const cv::Ptr<cv::aruco::Dictionary> dictionary = arucoDictionary(family);
+	const auto bitsOf = [&](int id) {
+		return cv::aruco::Dictionary::getBitsFromByteList(dictionary->bytesList.rowRange(id, id + 1),
+														   dictionary->markerSize);
+	};
+	const cv::Mat first = bitsOf(0);
+	return firstIdsTurning(info.idCount, [&](int id) {
+		TurnedBits t{};
+		const cv::Mat bits = bitsOf(id);
+		for (int k = 0; k < static_cast<int>(first.total()) && k < static_cast<int>(t.size()); k++)
+			t[static_cast<size_t>(k)] = bits.at<uint8_t>(k / first.cols, k % first.cols) != first.at<uint8_t>(k / first.cols, k % first.cols);
+		return t;
+	});
 }
 
 void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit)

@@ -38,12 +38,11 @@ const CellRoles& rolesOf(const std::string& family)
 	auto& slot = cache[family];
 	if (slot) return *slot;
 	slot = std::make_unique<CellRoles>();
-	const TagFamilyInfo* info = findFamily(family);
 	const TagBitmap first = renderTagBitmap(family, 0);
 	slot->cells = first.cells, slot->borderStart = first.borderStart, slot->borderCells = first.borderCells;
+	// A code cell is one in which the family's codes differ.
 	std::vector<bool> varies(first.pixels.size(), false);
-	// Every code bit changes within the first few hundred ids of any family.
-	for (int id = 1; id < std::min(info->idCount, 256); id++)
+	for (const int id : idsTurningEveryCodeBit(family))
 	{
 		const TagBitmap b = renderTagBitmap(family, id);
 		for (size_t k = 0; k < varies.size(); k++) varies[k] = varies[k] || b.pixels[k] != first.pixels[k];

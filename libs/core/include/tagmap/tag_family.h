@@ -96,4 +96,12 @@ TagBitmap renderTagBitmap(const std::string& family, int id);
  *  largest). Throws std::invalid_argument on an unknown family. */
 void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit);
 
+/** The ids that, drawn beside id 0, show every cell in which the family's
+ *  codes differ: for each bit of the code words, the first id that turns
+ *  it (ascending, each once). A few dozen drawings instead of every code
+ *  (65 k for the largest family); the order of the codes does not matter
+ *  (aruco_original's highest id bits turn only at ids 256 and 512). Throws
+ *  std::invalid_argument on an unknown family. */
+std::vector<int> idsTurningEveryCodeBit(const std::string& family);
+
 }  // namespace tagmap
