@@ -290,6 +290,28 @@ TEST(MergeDetections, OneSquareOneTag)
 			  2u);
 }
 
+// A code that is its own mirror image (aruco_5x5_250 #129) read facing both
+// ways on one square: which face was printed is unknown, so neither is
+// reported. Any other code's mirror image is not that code: the two faces
+// of a board printed on both sides are one square's duplicates as before.
+TEST(MergeDetections, AMirrorSymmetricCodeReadFacingBothWaysIsNoTag)
+{
+	ASSERT_TRUE(isOwnMirrorImage("aruco_5x5_250", 129));
+	ASSERT_FALSE(isOwnMirrorImage("aruco_5x5_250", 128));
+	const Eigen::Vector3d c(2, 1, 1);
+	const auto facing = [&](const std::string& family, int id, bool back, double fit) {
+		TagDetection t = readAt(family, id, 0.2, c, fit, 1500);
+		if (back) t.pose.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+		return t;
+	};
+	EXPECT_TRUE(mergeDetections({facing("aruco_5x5_250", 129, false, 0.90), facing("aruco_5x5_250", 129, true, 0.90)}).empty());
+	EXPECT_EQ(mergeDetections({facing("aruco_5x5_250", 128, false, 0.90), facing("aruco_5x5_250", 128, true, 0.90)}).size(), 1u);
+	EXPECT_EQ(mergeDetections({facing("aruco_5x5_250", 129, false, 0.90), facing("aruco_5x5_250", 129, false, 0.89)}).size(), 1u);
+	// No AprilTag code is its own mirror image, and most ArUco codes are not.
+	for (const std::string family : {"tag36h11", "tagStandard52h13", "aruco_6x6_250"})
+		for (int id = 0; id < 200; id++) EXPECT_FALSE(isOwnMirrorImage(family, id)) << family << " " << id;
+}
+
 // The noise every flatness test is measured against: a 1 m patch on a 1 cm
 // grid with 2 mm, 1 cm and 2 cm range noise, measured with a 3 cm index
 // (the 2 cm wall fills a 3 cm ball: the ball has to grow).

@@ -354,6 +354,23 @@ std::vector<int> idsTurningEveryCodeBit(const std::string& family)
 	});
 }
 
+bool isOwnMirrorImage(const std::string& family, int id)
+{
+	const TagBitmap bm = renderTagBitmap(family, id);
+	const int n = bm.cells;
+	const auto at = [&](int r, int c) { return bm.pixels[static_cast<size_t>(r * n + c)]; };
+	bool leftRight = true, upDown = true, diagonal = true, antiDiagonal = true;
+	for (int r = 0; r < n; r++)
+		for (int c = 0; c < n; c++)
+		{
+			leftRight = leftRight && at(r, c) == at(r, n - 1 - c);
+			upDown = upDown && at(r, c) == at(n - 1 - r, c);
+			diagonal = diagonal && at(r, c) == at(c, r);
+			antiDiagonal = antiDiagonal && at(r, c) == at(n - 1 - c, n - 1 - r);
+		}
+	return leftRight || upDown || diagonal || antiDiagonal;
+}
+
 void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit)
 {
 	const TagFamilyInfo& info = checkedFamily(family);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <tuple>
 
+#include "tagmap/tag_family.h"
+
 namespace tagmap
 {
 namespace
@@ -21,6 +23,16 @@ bool sameSquare(const TagDetection& a, const TagDetection& b)
 }
 
 bool sameCode(const TagDetection& a, const TagDetection& b) { return a.family == b.family && a.id == b.id; }
+
+// The same code read facing both ways on one square, where the code is its
+// own mirror image: nothing in the code says which face was printed (the
+// front-side check, with the sensors' positions, usually does before
+// this). For any other code, the mirror image is no read of the same id:
+// two faces are two tags (a board printed on both sides) and merge as one.
+bool sidesInDoubt(const TagDetection& a, const TagDetection& b)
+{
+	return sameCode(a, b) && a.pose.linear().col(2).dot(b.pose.linear().col(2)) < 0 && isOwnMirrorImage(a.family, a.id);
+}
 
 /** A code read inside a tag spans at most its inner cells: the border ring
  *  takes 2 of at most 9 cells across (aruco_7x7), 7/9 = 0.78 of the size,
@@ -67,8 +79,10 @@ std::vector<TagDetection> mergeDetections(std::vector<TagDetection> found, const
 			{
 				seen = true;
 				// `kept[k]` fits at least as well (sorted): another code on its
-				// square must lose clearly, else the square is ambiguous.
-				if (!sameCode(kept[k], d) && !clearlyBetterFit(kept[k], d, p.conflictSigmas)) ambiguous[k] = true;
+				// square (or a mirror-symmetric code facing the other way)
+				// must lose clearly, else the square is ambiguous.
+				if ((!sameCode(kept[k], d) || sidesInDoubt(kept[k], d)) && !clearlyBetterFit(kept[k], d, p.conflictSigmas))
+					ambiguous[k] = true;
 			}
 		if (!seen) kept.push_back(std::move(d)), ambiguous.push_back(false);
 	}

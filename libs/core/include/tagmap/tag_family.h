@@ -104,4 +104,11 @@ void forEachTagBitmap(const std::string& family, const std::function<void(int id
  *  std::invalid_argument on an unknown family. */
 std::vector<int> idsTurningEveryCodeBit(const std::string& family);
 
+/** True when the code's bitmap is its own mirror image (about an axis or a
+ *  diagonal): a read of it cannot tell the printed face from its back, so
+ *  the side it faces is unknown from the code alone. No AprilTag code is;
+ *  a few ArUco codes are (aruco_5x5_250 #129, aruco_6x6_1000 #622, 64 of
+ *  aruco_original's). Throws std::invalid_argument on an unknown family or id. */
+bool isOwnMirrorImage(const std::string& family, int id);
+
 }  // namespace tagmap

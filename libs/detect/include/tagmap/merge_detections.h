@@ -25,7 +25,9 @@ struct MergeParams
  *  - detections whose centres are closer than half the larger size are
  *    one square: the same family and id is a duplicate (the best pattern
  *    fit is kept); a different code is a conflicting reading, kept only
- *    when its fit clearly beats every other (MergeParams::conflictSigmas).
+ *    when its fit clearly beats every other (MergeParams::conflictSigmas);
+ *    so is the same code facing the other way when it is its own mirror
+ *    image (isOwnMirrorImage(): its side is unknown from the code).
  *  The result is sorted by family, id, then position (deterministic). */
 std::vector<TagDetection> mergeDetections(std::vector<TagDetection> found, const MergeParams& p = {});
 
