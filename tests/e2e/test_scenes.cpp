@@ -48,6 +48,15 @@ void expectAllFound(const SceneRun& r)
 	}
 	for (const auto& f : r.eval.falseDetections) ADD_FAILURE() << "false detection " << f.family << ":" << f.id;
 }
+
+// Where the scene's sensors stood, as the drifted map has them (what a
+// simplemap or `--viewpoints` gives the detector).
+std::vector<Eigen::Vector3d> stationsOf(const sim::SimulationOutput& out)
+{
+	std::vector<Eigen::Vector3d> stations;
+	for (const sim::FrameData& f : out.frames) stations.push_back(f.driftedPose.translation());
+	return stations;
+}
 }  // namespace
 
 TEST(Scenes, PresentersBothTagsIncludingTheOccludedOne)
@@ -91,8 +100,7 @@ TEST(Scenes, FamiliesWeakOnesWhenAskedForAloneWithALargerBudget)
 		if (family == "aruco_original")
 		{
 			EXPECT_TRUE(r.found.tags.empty()) << "a mirror-ambiguous read was reported without the stations";
-			std::vector<Eigen::Vector3d> stations;
-			for (const sim::FrameData& f : r.sim.frames) stations.push_back(f.driftedPose.translation());
+			const std::vector<Eigen::Vector3d> stations = stationsOf(r.sim);
 			r.found = Pipeline(p).detect(r.sim.map, stations);
 			r.eval = evaluateDetections(r.found.tags, r.sim.truthInMap);
 		}
@@ -118,8 +126,7 @@ TEST(Scenes, AMirrorAmbiguousArucoOriginalIsNeverReportedAsItsMirror)
 	p.families = {"aruco_original"};
 	const Detections alone = Pipeline(p).detect(out.map);
 	EXPECT_TRUE(alone.tags.empty()) << alone.tags.front().id;
-	std::vector<Eigen::Vector3d> stations;
-	for (const sim::FrameData& f : out.frames) stations.push_back(f.driftedPose.translation());
+	const std::vector<Eigen::Vector3d> stations = stationsOf(out);
 	const Detections seen = Pipeline(p).detect(out.map, stations);
 	ASSERT_EQ(seen.tags.size(), 1u);
 	EXPECT_EQ(seen.tags.front().id, 848);
@@ -138,8 +145,7 @@ TEST(Scenes, AMirrorSymmetricCodeIsReportedOnlyWhereItsSideIsKnown)
 	PipelineParams p;
 	p.families = {"aruco_5x5_250"};
 	EXPECT_TRUE(Pipeline(p).detect(out.map).tags.empty());
-	std::vector<Eigen::Vector3d> stations;
-	for (const sim::FrameData& f : out.frames) stations.push_back(f.driftedPose.translation());
+	const std::vector<Eigen::Vector3d> stations = stationsOf(out);
 	const Evaluation e = evaluateDetections(Pipeline(p).detect(out.map, stations).tags, out.truthInMap);
 	int found = 0;
 	for (const auto& t : e.perTruth)
@@ -180,8 +186,7 @@ TEST(Scenes, MirrorPrintedTagOnAPillarIsNoTag)
 	EXPECT_EQ(mirrored, 1) << "the scene no longer shows the mirror read the check is for";
 
 	// Knowing where the stations stood changes nothing here: tag 5 is seen.
-	std::vector<Eigen::Vector3d> stations;
-	for (const sim::FrameData& f : r.sim.frames) stations.push_back(f.driftedPose.translation());
+	const std::vector<Eigen::Vector3d> stations = stationsOf(r.sim);
 	const Detections withStations = Pipeline().detect(r.sim.map, stations);
 	EXPECT_EQ(evaluateDetections(withStations.tags, r.sim.truthInMap).falsePositives(), 0);
 	EXPECT_EQ(withStations.tags.size(), 1u);
@@ -199,8 +204,7 @@ TEST(Scenes, MirrorPrintedTagScannedFromOneSideIsNoTagWhereTheStationIsKnown)
 	ASSERT_EQ(scene.runs.size(), 1u);
 	scene.runs[0].waypoints.resize(1);  // the west station, in front of the sheet
 	const sim::SimulationOutput s = sim::simulate(scene, {});
-	std::vector<Eigen::Vector3d> stations;
-	for (const sim::FrameData& f : s.frames) stations.push_back(f.driftedPose.translation());
+	const std::vector<Eigen::Vector3d> stations = stationsOf(s);
 	ASSERT_FALSE(stations.empty());
 	const auto mirrorReads = [](const Detections& d) {
 		return std::count_if(d.tags.begin(), d.tags.end(),

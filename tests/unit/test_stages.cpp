@@ -931,16 +931,32 @@ TEST(ReadEvidence, ARealTagsReadIsNearerItsOwnCodeThanAnyOther)
 // every code of every family (aruco_original's id bits are its data bits,
 // and its highest two turn only at ids 256 and 512; tagStandard52h13 and
 // tagCircle49h12 each have a bit that their first 256 codes never turn).
+namespace
+{
+// Every code of a family, and the cells in which they differ (its code cells).
+struct AllCodes
+{
+	std::vector<std::vector<uint8_t>> codes;
+	std::vector<bool> codeCell;
+};
+AllCodes allCodesOf(const std::string& family)
+{
+	AllCodes all;
+	forEachTagBitmap(family, [&](int, const TagBitmap& bm) { all.codes.push_back(bm.pixels); });
+	all.codeCell.assign(all.codes[0].size(), false);
+	for (const auto& c : all.codes)
+		for (size_t k = 0; k < c.size(); k++) all.codeCell[k] = all.codeCell[k] || c[k] != all.codes[0][k];
+	return all;
+}
+}  // namespace
+
 TEST(ReadEvidence, CodeCellsAreTheCellsThatVaryOverEveryCode)
 {
 	for (const TagFamilyInfo& info : supportedFamilies())
 	{
-		std::vector<uint8_t> first;
-		std::vector<bool> varies;
-		forEachTagBitmap(info.name, [&](int id, const TagBitmap& bm) {
-			if (id == 0) first = bm.pixels, varies.assign(bm.pixels.size(), false);
-			for (size_t k = 0; k < bm.pixels.size(); k++) varies[k] = varies[k] || bm.pixels[k] != first[k];
-		});
+		const AllCodes all = allCodesOf(info.name);
+		const std::vector<uint8_t>& first = all.codes[0];
+		const std::vector<bool>& varies = all.codeCell;
 		std::vector<float> exact(first.size());
 		for (size_t k = 0; k < first.size(); k++) exact[k] = first[k] ? 0.9f : 0.1f;
 		const ReadEvidence e = judgeCells(exact, info.name, 0, 0, 8, {info.name}, {});
@@ -959,12 +975,9 @@ TEST(ReadEvidence, CodeDistancesAreTheClearCellsThatDifferFromEachCode)
 	const ReadEvidenceParams p;
 	for (const std::string family : {"tag36h11", "aruco_original"})
 	{
-		std::vector<std::vector<uint8_t>> codes;
-		forEachTagBitmap(family, [&](int, const TagBitmap& bm) { codes.push_back(bm.pixels); });
-		// Code cells: those that differ between the family's codes.
-		std::vector<bool> codeCell(codes[0].size(), false);
-		for (const auto& c : codes)
-			for (size_t k = 0; k < c.size(); k++) codeCell[k] = codeCell[k] || c[k] != codes[0][k];
+		const AllCodes all = allCodesOf(family);
+		const std::vector<std::vector<uint8_t>>& codes = all.codes;
+		const std::vector<bool>& codeCell = all.codeCell;
 		for (const int id : {0, 5, 17})
 		{
 			const TagBitmap bm = renderTagBitmap(family, id);
