@@ -354,12 +354,21 @@ std::vector<int> idsTurningEveryCodeBit(const std::string& family)
 	});
 }
 
-bool isOwnMirrorImage(const std::string& family, int id)
+namespace
+{
+// Which of the square's symmetries map the code's bitmap onto itself.
+struct BitmapSymmetries
+{
+	bool mirror;  // about an axis or a diagonal
+	bool turn;    // a half turn (so also a quarter turn)
+};
+
+BitmapSymmetries symmetriesOf(const std::string& family, int id)
 {
 	const TagBitmap bm = renderTagBitmap(family, id);
 	const int n = bm.cells;
 	const auto at = [&](int r, int c) { return bm.pixels[static_cast<size_t>(r * n + c)]; };
-	bool leftRight = true, upDown = true, diagonal = true, antiDiagonal = true;
+	bool leftRight = true, upDown = true, diagonal = true, antiDiagonal = true, halfTurn = true;
 	for (int r = 0; r < n; r++)
 		for (int c = 0; c < n; c++)
 		{
@@ -367,9 +376,16 @@ bool isOwnMirrorImage(const std::string& family, int id)
 			upDown = upDown && at(r, c) == at(n - 1 - r, c);
 			diagonal = diagonal && at(r, c) == at(c, r);
 			antiDiagonal = antiDiagonal && at(r, c) == at(n - 1 - c, n - 1 - r);
+			halfTurn = halfTurn && at(r, c) == at(n - 1 - r, n - 1 - c);
 		}
-	return leftRight || upDown || diagonal || antiDiagonal;
+	// A bitmap a quarter turn maps onto itself is half-turn symmetric too.
+	return {leftRight || upDown || diagonal || antiDiagonal, halfTurn};
 }
+}  // namespace
+
+bool isOwnMirrorImage(const std::string& family, int id) { return symmetriesOf(family, id).mirror; }
+
+bool isOwnTurnedImage(const std::string& family, int id) { return symmetriesOf(family, id).turn; }
 
 void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit)
 {

@@ -216,15 +216,18 @@ class CandidateDecoder
 		return placed;
 	}
 
-	// A read in 3D: pose, plane refit, the tag's own bitmap fitted to its
-	// points, the size asked for, the code on the cells the points measured,
-	// the support plane, the side it faces. Verdict::Decoded and `t` when it
+	// A read in 3D: the size asked for, a code whose vertex order can be
+	// known, pose, plane refit, the tag's own bitmap fitted to its points,
+	// the refined size, the code on the cells the points measured, the
+	// support plane, the side it faces. Verdict::Decoded and `t` when it
 	// holds.
 	Verdict verifyRead(const DecodedTag2D& d, const ReadEvidence& ev, const PlaneImage& plane, TagDetection& t) const
 	{
 		// A decode the size of a few points (a code read into text or a
 		// corner of a bigger pattern) is no tag of the sizes asked for.
 		if (!sizeAsked(measuredTagSize(d, plane))) return Verdict::SizeMismatch;
+		// Its pose could be half a turn off with nothing to tell.
+		if (isOwnTurnedImage(d.family, d.id)) return Verdict::TurnSymmetric;
 		t = solveTagPose(d, plane, p_.tagSize);
 		refitTagPlane(t, plane, m_.xs, m_.ys, m_.zs);
 		if (!refineWithPattern(t, plane, m_.xs, m_.ys, m_.zs, m_.is, refinement_)) return Verdict::PatternMismatch;

@@ -111,4 +111,11 @@ std::vector<int> idsTurningEveryCodeBit(const std::string& family);
  *  aruco_original's). Throws std::invalid_argument on an unknown family or id. */
 bool isOwnMirrorImage(const std::string& family, int id);
 
+/** True when the code's bitmap is its own image under a half (or quarter)
+ *  turn: a read of it cannot tell which corner is the first, so neither its
+ *  vertex order nor its pose's turn about the normal can be known. Of the
+ *  families here only aruco_original #1023 is. Throws std::invalid_argument
+ *  on an unknown family or id. */
+bool isOwnTurnedImage(const std::string& family, int id);
+
 }  // namespace tagmap

@@ -30,6 +30,7 @@ enum class Verdict
 	PatternMismatch,
 	CodeNotInPoints,
 	WrongSide,
+	TurnSymmetric,
 	Decoded,
 };
 
@@ -40,7 +41,7 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 19> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 20> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
@@ -78,6 +79,9 @@ inline constexpr std::array<VerdictInfo, 19> kVerdicts = {{
 	{Verdict::WrongSide, "wrong_side",
 	 "decoded, but its printed face would look into the solid body behind it, with free space on its other "
 	 "side: the mirror image of a tag (front_side)"},
+	{Verdict::TurnSymmetric, "turn_symmetric",
+	 "decoded, but the code is its own image under a half turn (aruco_original #1023): which corner is its "
+	 "first, so its vertex order and its turn about the normal, cannot be read"},
 	{Verdict::Decoded, "decoded", "a tag was read and its points match the tag's bitmap"},
 }};
 
