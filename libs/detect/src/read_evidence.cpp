@@ -123,13 +123,21 @@ const std::vector<CellBits>& familyCodes(const std::string& family)
 }
 
 // The verdict on counted evidence: chance first, then the border ring, then
-// the quiet zone.
-ReadEvidence withRejection(ReadEvidence e, const std::vector<std::string>& searched, const ReadEvidenceParams& p)
+// the quiet zone. `ringChance`: the chance of a match as good over the code
+// cells and the ring's together (a ring cell read white an error like a
+// wrong bit).
+ReadEvidence withRejection(ReadEvidence e, double ringChance, const std::vector<std::string>& searched,
+						   const ReadEvidenceParams& p)
 {
+	const double budget = budgetPerFamily(searched, p);
 	e.rejection = Verdict::ByChance;
-	if (e.chance > budgetPerFamily(searched, p)) return e;
+	if (e.chance > budget) return e;
+	// A ring with more white cells than the rate allows (a grid, a larger
+	// pattern, or a tag at the edge of the scan) still stands when the code
+	// and the ring, counted together, are beyond chance: a code read
+	// exactly on 36 cells outweighs a quarter of its ring washed out.
 	e.rejection = Verdict::NoBorder;
-	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells) return e;
+	if (e.borderErrors > p.maxBorderErrorRate * e.borderCells && ringChance > budget) return e;
 	e.rejection = Verdict::NoQuietZone;
 	if (e.quietErrors > p.maxQuietErrorRate * e.quietCells) return e;
 	e.rejection.reset();
@@ -209,7 +217,7 @@ TagBitmap frameBitmap(const std::string& family)
 
 double chanceMatchProbability(int codes, int n, int wrong, int orientations)
 {
-	// sum_{k<=wrong} C(n,k) / 2^n, in logs: n reaches 52 bits.
+	// sum_{k<=wrong} C(n,k) / 2^n: n reaches about 100 cells (a code and its ring).
 	double ball = 0, binom = 1;
 	for (int k = 0; k <= wrong && k <= n; k++)
 	{
@@ -263,7 +271,9 @@ ReadEvidence judgeCells(const std::vector<float>& sample, const std::string& fam
 		e.bitErrors = decoderHamming, e.erasures = unmeasured;
 		e.chance = chanceMatchProbability(codes, measuredBits, decoderHamming, orientations);
 	}
-	return withRejection(e, searched, p);
+	const double ringChance = chanceMatchProbability(codes, e.codeBits - e.erasures + e.borderCells,
+													 e.bitErrors + e.borderErrors, orientations);
+	return withRejection(e, ringChance, searched, p);
 }
 
 CodeDistances codeDistances(const std::vector<float>& cells, const std::string& family, int id, int orientations,

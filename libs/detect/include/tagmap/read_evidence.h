@@ -42,7 +42,9 @@ struct ReadEvidenceParams
 	 *  threshold is an erasure: it neither counts as wrong nor as evidence
 	 *  (the chance is computed over the other cells). */
 	double erasureBand = 0.15;
-	/** Border-ring cells allowed to read white, as a fraction. */
+	/** Border-ring cells allowed to read white, as a fraction; more pass
+	 *  when the code and the ring, counted together, are within the
+	 *  chance budget. */
 	double maxBorderErrorRate = 0.1;
 	/** Quiet-zone cells allowed to read dark, as a fraction. */
 	double maxQuietErrorRate = 0.15;

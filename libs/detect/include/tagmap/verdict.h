@@ -65,7 +65,8 @@ inline constexpr std::array<VerdictInfo, 20> kVerdicts = {{
 	 "a code was read, but its family's grid reaches past the candidate's image, and past the image of the box "
 	 "the whole grid fits in too: its cells cannot be sampled (families with data cells outside their border)"},
 	{Verdict::NoBorder, "no_border",
-	 "a code was read, but the black border ring is not black (evidence.max_border_error_rate)"},
+	 "a code was read, but the black border ring is not black (evidence.max_border_error_rate), and the code "
+	 "is not strong enough to outweigh it"},
 	{Verdict::NoQuietZone, "no_quiet_zone",
 	 "a code was read, but the white margin around it is not white: a grid or a larger pattern "
 	 "(evidence.max_quiet_error_rate)"},
