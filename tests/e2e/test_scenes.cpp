@@ -26,12 +26,18 @@ struct SceneRun
 	Evaluation eval;
 };
 
+// A scene of share/scenes, by file name.
+sim::Scene shippedScene(const std::string& file, const sim::SceneParameters& overrides = {})
+{
+	return sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/" + file, overrides);
+}
+
 SceneRun run(const std::string& scene, const sim::SceneParameters& overrides = {}, double intensityScale = 1,
 			 PipelineParams params = {}, sim::SimOptions opt = {})
 {
 	SceneRun r;
 	opt.intensityScale = intensityScale;
-	r.sim = sim::simulate(sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/" + scene, overrides), opt);
+	r.sim = sim::simulate(shippedScene(scene, overrides), opt);
 	r.found = Pipeline(params).detect(r.sim.map);
 	r.eval = evaluateDetections(r.found.tags, r.sim.truthInMap);
 	return r;
@@ -119,7 +125,7 @@ TEST(Scenes, FamiliesWeakOnesWhenAskedForAloneWithALargerBudget)
 // with the stations it is 848.
 TEST(Scenes, AMirrorAmbiguousArucoOriginalIsNeverReportedAsItsMirror)
 {
-	sim::Scene scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/families.yaml");
+	sim::Scene scene = shippedScene("families.yaml");
 	for (sim::TagSpec& t : scene.tags)
 		if (t.family == "aruco_original") t.id = 848;
 	const sim::SimulationOutput out = sim::simulate(scene);
@@ -147,7 +153,7 @@ TEST(Scenes, ACodeThatIsItsOwnHalfTurnIsNeverReported)
 	for (int id : {1023, 1022})
 		for (double turn : {0.0, M_PI})
 		{
-			sim::Scene scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/families.yaml");
+			sim::Scene scene = shippedScene("families.yaml");
 			for (sim::TagSpec& t : scene.tags)
 				if (t.family == "aruco_original") t.id = id, t.pose.rotate(Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()));
 			const sim::SimulationOutput out = sim::simulate(scene);
@@ -180,7 +186,7 @@ TEST(Scenes, ACodeThatIsItsOwnHalfTurnIsNeverReported)
 // mirror read faces away from them; without, neither is reported.
 TEST(Scenes, AMirrorSymmetricCodeIsReportedOnlyWhereItsSideIsKnown)
 {
-	sim::Scene scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/families.yaml");
+	sim::Scene scene = shippedScene("families.yaml");
 	for (sim::TagSpec& t : scene.tags)
 		if (t.family == "aruco_5x5_100") t.family = "aruco_5x5_250", t.id = 129;
 	const sim::SimulationOutput out = sim::simulate(scene);
@@ -242,7 +248,7 @@ TEST(Scenes, MirrorPrintedTagOnAPillarIsNoTag)
 // it, while one from the sheet's back does: no tag.
 TEST(Scenes, MirrorPrintedTagScannedFromOneSideIsNoTagWhereTheStationIsKnown)
 {
-	sim::Scene scene = sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/mirrored.yaml");
+	sim::Scene scene = shippedScene("mirrored.yaml");
 	ASSERT_EQ(scene.runs.size(), 1u);
 	scene.runs[0].waypoints.resize(1);  // the west station, in front of the sheet
 	const sim::SimulationOutput s = sim::simulate(scene, {});
@@ -352,7 +358,7 @@ std::vector<TagDetection> detectFile(const std::string& path, const io::LoadPara
 TEST(Scenes, GeoreferencedMapsGiveTheShiftedTags)
 {
 	const sim::SimulationOutput s =
-		sim::simulate(sim::loadScene(std::string(TAGMAP_SOURCE_DIR) + "/share/scenes/presenters.yaml"), {});
+		sim::simulate(shippedScene("presenters.yaml"), {});
 	const std::string dir = std::string(TAGMAP_BINARY_DIR) + "/test_scenes_geo";
 	std::filesystem::create_directories(dir);
 	const Eigen::Vector3d shift(512345, 5123456, 187);
