@@ -142,17 +142,37 @@ TEST(Report, ARejectedCandidateListsEachReadAndWhyItFailed)
 			  1u);
 }
 
-TEST(Report, ACandidateWithAnEarlierOnesBoxNamesIt)
+// The report page of the synthetic walls with one more candidate without
+// an image (a copy of the first one, changed by `change`).
+template <typename F>
+std::string pageWithOneMoreCandidate(const char* dirName, F change)
 {
 	Detections found = run().found;
-	ASSERT_FALSE(found.candidates.empty());
+	if (found.candidates.empty()) return {};
 	CandidateReport c = found.candidates.front();
 	c.image = cv::Mat();
-	c.verdict = Verdict::SameBox;
-	c.sameBoxAs = 0;
+	change(c);
 	found.candidates.push_back(c);
-	const fs::path dir = freshDir("tagmap_report_same_box");
+	const fs::path dir = freshDir(dirName);
 	report::writeReport(dir.string(), {"walls.pcd", "synthetic", "tagmap detect walls.pcd", run().map, found,
 									   run().params});
-	EXPECT_EQ(count(readText(dir / "index.html"), "same_box as #0<"), 1u);
+	return readText(dir / "index.html");
+}
+
+TEST(Report, ACandidateWithAnEarlierOnesBoxNamesIt)
+{
+	const std::string page = pageWithOneMoreCandidate("tagmap_report_same_box", [](CandidateReport& c) {
+		c.verdict = Verdict::SameBox;
+		c.sameBoxAs = 0;
+	});
+	EXPECT_EQ(count(page, "same_box as #0<"), 1u);
+}
+
+TEST(Report, ACandidateCentredOnADecodedTagNamesTheOneThatDecodedIt)
+{
+	const std::string page = pageWithOneMoreCandidate("tagmap_report_on_decoded_tag", [](CandidateReport& c) {
+		c.verdict = Verdict::OnDecodedTag;
+		c.onTagOf = 9999;  // an index no real candidate of this map names
+	});
+	EXPECT_EQ(count(page, "on_decoded_tag of #9999<"), 1u);
 }

@@ -12,6 +12,7 @@
 #include "tagmap/candidate_filter.h"
 #include "tagmap/clustering.h"
 #include "tagmap/code_in_points.h"
+#include "tagmap/decode_schedule.h"
 #include "tagmap/front_side.h"
 #include <Eigen/Geometry>
 
@@ -263,6 +264,40 @@ TagDetection readAt(const std::string& family, int id, double size, const Eigen:
 	return t;
 }
 }  // namespace
+
+TEST(DecodeSchedule, OverlappingBoxesAreOneGroupInCandidateOrder)
+{
+	const auto box = [](double x, double y, double yawDeg, double edge) {
+		OrientedBox b;
+		b.center = Eigen::Vector3d(x, y, 1);
+		b.axes = Eigen::AngleAxisd(yawDeg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+		b.extent = Eigen::Vector3d(edge, edge, 0.02);
+		return b;
+	};
+	// 0 and 3 overlap, 3 and 1 overlap (a chain); 2 is apart; 4 reaches 2
+	// only turned 45 deg (its corners), 5 misses 0 by a centimetre.
+	const std::vector<OrientedBox> boxes = {box(0, 0, 0, 0.4),	box(0.75, 0, 0, 0.4), box(3, 0, 0, 0.4),
+											box(0.4, 0, 0, 0.4),	box(3.45, 0, 45, 0.4), box(0, 0.41, 0, 0.4)};
+	const std::vector<std::vector<size_t>> groups = overlappingBoxGroups(boxes);
+	ASSERT_EQ(groups.size(), 3u);
+	EXPECT_EQ(groups[0], (std::vector<size_t>{0, 1, 3}));
+	EXPECT_EQ(groups[1], (std::vector<size_t>{2, 4}));
+	EXPECT_EQ(groups[2], (std::vector<size_t>{5}));
+	EXPECT_TRUE(overlappingBoxGroups({}).empty());
+}
+
+TEST(DecodeSchedule, ABoxCentredOnADecodedTagIsNotDecodedAgain)
+{
+	TagDetection t;
+	t.size = 0.4;
+	t.pose.translation() = Eigen::Vector3d(2, 1, 1.5);
+	OrientedBox b;
+	b.extent = Eigen::Vector3d(0.6, 0.5, 0.02);
+	b.center = t.position() + Eigen::Vector3d(0.19, 0, 0);  // within half its size
+	EXPECT_TRUE(centredOnDecodedTag(b, t));
+	b.center = t.position() + Eigen::Vector3d(0, 0.21, 0);  // beyond: another square
+	EXPECT_FALSE(centredOnDecodedTag(b, t));
+}
 
 TEST(MergeDetections, OneSquareOneTag)
 {

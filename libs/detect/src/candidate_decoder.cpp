@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "tagmap/code_in_points.h"
+#include "tagmap/decode_schedule.h"
 #include "tagmap/front_side.h"
 #include "tagmap/image_variants.h"
 #include "tagmap/intermediate_plane.h"
@@ -347,16 +348,38 @@ std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapVie
 {
 	const CandidateDecoder decoder(p, m, grid, gatherer, viewpoints, len, keepImages, decodedFamilies);
 	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
+	std::vector<OrientedBox> boxes;
+	for (const Candidate& c : candidates) boxes.push_back(c.box);
+	// decode_schedule.h: a group in candidate order on one worker.
+	const std::vector<std::vector<size_t>> groups = overlappingBoxGroups(boxes);
 	std::atomic<size_t> finished{0};
-	parallelForWorkers(candidates.size(), threads, [&](unsigned worker, size_t b, size_t e) {
+	parallelForWorkers(groups.size(), threads, [&](unsigned worker, size_t b, size_t e) {
 		const CandidateDecoders decoders = decodersFor(worker);
-		for (size_t k = b; k < e; k++)
+		for (size_t g = b; g < e; g++)
 		{
-			CandidateReport& rep = reports[candidates[k].report];
-			CandidateOutcome o = decoder.decodeCandidate(candidates[k], std::move(rep), decoders.hard, decoders.soft);
-			rep = std::move(o.report);
-			perCandidate[k] = std::move(o.tags);
-			progress(++finished, candidates.size());
+			// The tags the group's candidates decoded so far, with the candidate.
+			std::vector<std::pair<const TagDetection*, size_t>> decoded;
+			for (const size_t k : groups[g])
+			{
+				CandidateReport& rep = reports[candidates[k].report];
+				const auto on = std::find_if(decoded.begin(), decoded.end(), [&](const auto& d) {
+					return centredOnDecodedTag(candidates[k].box, *d.first);
+				});
+				if (on != decoded.end())
+				{
+					rep.verdict = Verdict::OnDecodedTag;
+					rep.onTagOf = candidates[on->second].report;
+				}
+				else
+				{
+					CandidateOutcome o =
+						decoder.decodeCandidate(candidates[k], std::move(rep), decoders.hard, decoders.soft);
+					rep = std::move(o.report);
+					perCandidate[k] = std::move(o.tags);
+					for (const TagDetection& t : perCandidate[k]) decoded.emplace_back(&t, k);
+				}
+				progress(++finished, candidates.size());
+			}
 		}
 	});
 	std::vector<TagDetection> all;

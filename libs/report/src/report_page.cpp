@@ -138,14 +138,16 @@ std::string rejectedSection(const Detections& found, size_t maxListed)
 	for (size_t k = 0; k < shown; k++)
 	{
 		const CandidateReport& c = found.candidates[idx[k]];
-		const std::string verdict =
-			verdictName(c.verdict) + (c.sameBoxAs ? " as #" + std::to_string(*c.sameBoxAs) : std::string());
+		const std::string verdict = verdictName(c.verdict) +
+									(c.sameBoxAs ? " as #" + std::to_string(*c.sameBoxAs) : std::string()) +
+									(c.onTagOf ? " of #" + std::to_string(*c.onTagOf) : std::string());
 		t.addRow({std::to_string(idx[k]), verdict, std::to_string(c.clusterPoints),
 				  format("%.3f x %.3f x %.3f", c.extent.x(), c.extent.y(), c.extent.z()), vec3(c.center, "%.2f")});
 	}
 	std::string h = "<h2>Clusters without an image</h2>\n<p>Rejected by the candidate filter before any image was "
 					"made (size, squareness, not_flat), with an earlier candidate's box and decoded there "
-					"(same_box as #N), or whose points are not planar; biggest first.</p>\n";
+					"(same_box as #N), centred on a tag an earlier candidate decoded (on_decoded_tag of #N), or "
+					"whose points are not planar; biggest first.</p>\n";
 	if (idx.empty()) return h + "<p>None.</p>\n";
 	h += t.html();
 	if (idx.size() > shown) h += "<p>" + htmlEscape(format("%zu more not listed.", idx.size() - shown)) + "</p>\n";

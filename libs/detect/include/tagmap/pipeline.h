@@ -52,6 +52,9 @@ struct CandidateReport
 	/** Verdict::SameBox: the index (in Detections::candidates) of the
 	 *  earlier candidate with this box, which was decoded instead. */
 	std::optional<size_t> sameBoxAs;
+	/** Verdict::OnDecodedTag: the index (in Detections::candidates) of the
+	 *  earlier candidate that decoded the tag this box is centred on. */
+	std::optional<size_t> onTagOf;
 };
 
 struct Detections

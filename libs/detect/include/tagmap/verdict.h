@@ -17,6 +17,7 @@ enum class Verdict
 	Squareness,
 	NotFlat,
 	SameBox,
+	OnDecodedTag,
 	NotPlanar,
 	NoDecode,
 	NoFamilyCanPass,
@@ -41,13 +42,16 @@ struct VerdictInfo
 	const char* meaning;
 };
 
-inline constexpr std::array<VerdictInfo, 20> kVerdicts = {{
+inline constexpr std::array<VerdictInfo, 21> kVerdicts = {{
 	{Verdict::Candidate, "candidate", "passed the filter, not processed"},
 	{Verdict::Size, "size", "box edge outside the tag-size range (--tag-size, candidates.min/max_tag_size)"},
 	{Verdict::Squareness, "squareness", "box too elongated for a square tag (candidates.max_aspect)"},
 	{Verdict::NotFlat, "not_flat", "box too thick for a printed tag (candidates.max_flatness)"},
 	{Verdict::SameBox, "same_box",
 	 "the box of an earlier candidate, to within a point spacing: it gathers the same points, decoded once"},
+	{Verdict::OnDecodedTag, "on_decoded_tag",
+	 "not decoded: its box is centred (within half the tag's size) on a tag that an overlapping candidate before "
+	 "it decoded; it would read that tag again (decode_schedule.h)"},
 	{Verdict::NotPlanar, "not_planar", "the gathered points do not fit one plane"},
 	{Verdict::NoDecode, "no_decode", "no decoder read a tag of the requested families on the image"},
 	{Verdict::NoFamilyCanPass, "no_family_can_pass",

@@ -1,0 +1,32 @@
+// Stage 4-6's schedule: which candidates are decoded, by which worker, in
+// what order. Overlapping candidates (the clusterings at two tolerances, the
+// density levels, square windows along a long box) often hold one tag: on
+// the Livox windows of `observe` each tag was decoded 3.7 times, and the
+// merge kept one of them. A candidate centred on a tag that a candidate
+// before it already decoded is not decoded again. Whether one is skipped
+// depends only on the candidates before it in its group, and a group is
+// decoded by one worker in candidate order: the result is the same for any
+// thread count.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "tagmap/clustering.h"
+#include "tagmap/tag_detection.h"
+
+namespace tagmap
+{
+/** The boxes as groups whose axis-aligned bounds overlap, joined through
+ *  any chain of overlaps (connected components): each group in ascending
+ *  index, the groups in order of their first index. */
+std::vector<std::vector<size_t>> overlappingBoxGroups(const std::vector<OrientedBox>& boxes);
+
+/** True when `box` was proposed for `tag`: its centre lies within half
+ *  the tag's size of the tag's centre (the merge's "one square",
+ *  merge_detections.h: a read there would be that tag again or lose to
+ *  it). Whatever else its image shows, the candidates proposed for those
+ *  things read. */
+bool centredOnDecodedTag(const OrientedBox& box, const TagDetection& tag);
+
+}  // namespace tagmap
