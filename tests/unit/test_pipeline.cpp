@@ -110,6 +110,32 @@ TEST(Pipeline, FindsTagOnWallInAnyOrientation)
 	}
 }
 
+TEST(Pipeline, ATagIsDecodedOnceFromItsLargestClusterAndItsOtherBoxesNameIt)
+{
+	// The clusterings at two tolerances and the density levels propose
+	// several boxes around one tag: the one of the most cluster points is
+	// decoded, the others centred on its tag are not (decode_schedule.h).
+	WallScene s;
+	s.T_G_wall = wallPose(0.3, M_PI / 2, Eigen::Vector3d(3, 1, 1));
+	TagDetection truth;
+	const Detections found = Pipeline().detect(makeWall(s, truth));
+	ASSERT_EQ(found.tags.size(), 1u);
+	size_t decoded = 0, spared = 0;
+	for (const CandidateReport& c : found.candidates)
+	{
+		decoded += c.verdict == Verdict::Decoded;
+		if (c.verdict != Verdict::OnDecodedTag) continue;
+		spared++;
+		ASSERT_TRUE(c.onTagOf.has_value());
+		const CandidateReport& by = found.candidates.at(*c.onTagOf);
+		EXPECT_EQ(by.verdict, Verdict::Decoded);
+		EXPECT_LE(c.clusterPoints, by.clusterPoints);
+		EXPECT_LT((c.center - found.tags[0].position()).norm(), 0.5 * found.tags[0].size);
+	}
+	EXPECT_EQ(decoded, 1u);
+	EXPECT_GE(spared, 1u);
+}
+
 TEST(IntermediatePlane, SeenFromBehindKeepsIdAndVertexOrder)
 {
 	// The box of a cluster has no preferred side: render the tag's plane

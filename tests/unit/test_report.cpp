@@ -151,6 +151,8 @@ std::string pageWithOneMoreCandidate(const char* dirName, F change)
 	if (found.candidates.empty()) return {};
 	CandidateReport c = found.candidates.front();
 	c.image = cv::Mat();
+	c.sameBoxAs.reset();
+	c.onTagOf.reset();
 	change(c);
 	found.candidates.push_back(c);
 	const fs::path dir = freshDir(dirName);

@@ -350,8 +350,15 @@ std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapVie
 	std::vector<std::vector<TagDetection>> perCandidate(candidates.size());
 	std::vector<OrientedBox> boxes;
 	for (const Candidate& c : candidates) boxes.push_back(c.box);
-	// decode_schedule.h: a group in candidate order on one worker.
-	const std::vector<std::vector<size_t>> groups = overlappingBoxGroups(boxes);
+	// decode_schedule.h: a group on one worker, the candidate of the most
+	// cluster points first (ties in candidate order): the cluster that
+	// holds a tag's whole border before the fragments around it, which its
+	// tag then spares.
+	std::vector<std::vector<size_t>> groups = overlappingBoxGroups(boxes);
+	for (std::vector<size_t>& g : groups)
+		std::stable_sort(g.begin(), g.end(), [&](size_t a, size_t b) {
+			return reports[candidates[a].report].clusterPoints > reports[candidates[b].report].clusterPoints;
+		});
 	std::atomic<size_t> finished{0};
 	parallelForWorkers(groups.size(), threads, [&](unsigned worker, size_t b, size_t e) {
 		const CandidateDecoders decoders = decodersFor(worker);

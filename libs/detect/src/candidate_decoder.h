@@ -29,8 +29,9 @@ struct CandidateDecoders
 
 /** What the candidates hold, as tags: overlapping candidates in groups
  *  (decode_schedule.h), each group on one worker with its own decoders
- *  (`decodersFor(worker)`), a candidate centred on a tag its group decoded
- *  before it not decoded again; each candidate's report
+ *  (`decodersFor(worker)`), the candidate of the most cluster points
+ *  first, a candidate centred on a tag its group decoded before it not
+ *  decoded again; each candidate's report
  *  (`reports[candidate.report]`) says what happened. Results are stored
  *  per candidate index, so the output is the same for any thread count. `progress`: candidates done. `viewpoints`: where the map's
  *  sensors stood, if known (front_side.h: seenOnlyFromBehind(), on `grid`). */

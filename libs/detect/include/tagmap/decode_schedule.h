@@ -5,8 +5,8 @@
 // merge kept one of them. A candidate centred on a tag that a candidate
 // before it already decoded is not decoded again. Whether one is skipped
 // depends only on the candidates before it in its group, and a group is
-// decoded by one worker in candidate order: the result is the same for any
-// thread count.
+// decoded by one worker in a fixed order (the driver's: the largest
+// cluster first): the result is the same for any thread count.
 #pragma once
 
 #include <cstddef>
