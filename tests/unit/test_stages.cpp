@@ -265,25 +265,27 @@ TagDetection readAt(const std::string& family, int id, double size, const Eigen:
 }
 }  // namespace
 
-TEST(DecodeSchedule, OverlappingBoxesAreOneGroupInCandidateOrder)
+TEST(DecodeSchedule, BoxesOfNearlyOneCentreAreOneGroupOverlappingOnesAreNot)
 {
-	const auto box = [](double x, double y, double yawDeg, double edge) {
+	const auto box = [](double x, double y, double length, double width) {
 		OrientedBox b;
 		b.center = Eigen::Vector3d(x, y, 1);
-		b.axes = Eigen::AngleAxisd(yawDeg * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-		b.extent = Eigen::Vector3d(edge, edge, 0.02);
+		b.extent = Eigen::Vector3d(length, width, 0.02);
 		return b;
 	};
-	// 0 and 3 overlap, 3 and 1 overlap (a chain); 2 is apart; 4 reaches 2
-	// only turned 45 deg (its corners), 5 misses 0 by a centimetre.
-	const std::vector<OrientedBox> boxes = {box(0, 0, 0, 0.4),	box(0.75, 0, 0, 0.4), box(3, 0, 0, 0.4),
-											box(0.4, 0, 0, 0.4),	box(3.45, 0, 45, 0.4), box(0, 0.41, 0, 0.4)};
-	const std::vector<std::vector<size_t>> groups = overlappingBoxGroups(boxes);
+	// 0, 2 and 4: one tag's boxes at two tolerances and a density level
+	// (centres 4-9 cm apart, within half the narrower width); 1 overlaps 0
+	// as the next pane of a window grid does, its centre 0.45 m away; 3 is
+	// a wall-sized box over all of them, centred elsewhere; 5 joins 4 only
+	// (a chain: 5 is 0.14 m from 4, 0.22 m from 0).
+	const std::vector<OrientedBox> boxes = {box(0, 0, 0.4, 0.4),	 box(0.45, 0, 0.6, 0.6), box(0.05, 0.02, 0.5, 0.45),
+											box(1.0, 0.5, 3.0, 2.0), box(0.08, 0.03, 0.3, 0.3), box(0.22, 0.03, 0.3, 0.3)};
+	const std::vector<std::vector<size_t>> groups = concentricBoxGroups(boxes);
 	ASSERT_EQ(groups.size(), 3u);
-	EXPECT_EQ(groups[0], (std::vector<size_t>{0, 1, 3}));
-	EXPECT_EQ(groups[1], (std::vector<size_t>{2, 4}));
-	EXPECT_EQ(groups[2], (std::vector<size_t>{5}));
-	EXPECT_TRUE(overlappingBoxGroups({}).empty());
+	EXPECT_EQ(groups[0], (std::vector<size_t>{0, 2, 4, 5}));
+	EXPECT_EQ(groups[1], (std::vector<size_t>{1}));
+	EXPECT_EQ(groups[2], (std::vector<size_t>{3}));
+	EXPECT_TRUE(concentricBoxGroups({}).empty());
 }
 
 TEST(DecodeSchedule, ABoxCentredOnADecodedTagIsNotDecodedAgain)

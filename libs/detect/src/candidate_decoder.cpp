@@ -354,7 +354,7 @@ std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapVie
 	// cluster points first (ties in candidate order): the cluster that
 	// holds a tag's whole border before the fragments around it, which its
 	// tag then spares.
-	std::vector<std::vector<size_t>> groups = overlappingBoxGroups(boxes);
+	std::vector<std::vector<size_t>> groups = concentricBoxGroups(boxes);
 	for (std::vector<size_t>& g : groups)
 		std::stable_sort(g.begin(), g.end(), [&](size_t a, size_t b) {
 			return reports[candidates[a].report].clusterPoints > reports[candidates[b].report].clusterPoints;

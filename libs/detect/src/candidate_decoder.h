@@ -27,7 +27,7 @@ struct CandidateDecoders
 	const SoftTagDecoder& soft;
 };
 
-/** What the candidates hold, as tags: overlapping candidates in groups
+/** What the candidates hold, as tags: candidates of nearly one centre in groups
  *  (decode_schedule.h), each group on one worker with its own decoders
  *  (`decodersFor(worker)`), the candidate of the most cluster points
  *  first, a candidate centred on a tag its group decoded before it not

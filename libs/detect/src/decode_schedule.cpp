@@ -25,29 +25,23 @@ struct Groups
 };
 }  // namespace
 
-std::vector<std::vector<size_t>> overlappingBoxGroups(const std::vector<OrientedBox>& boxes)
+std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedBox>& boxes)
 {
 	const size_t n = boxes.size();
-	std::vector<Eigen::Vector3d> lo(n), hi(n);
-	for (size_t i = 0; i < n; i++)
-	{
-		const Eigen::Vector3d reach = boxes[i].axes.cwiseAbs() * (0.5 * boxes[i].extent);
-		lo[i] = boxes[i].center - reach;
-		hi[i] = boxes[i].center + reach;
-	}
-	// Sweep along x: only boxes that start before one ends can overlap it.
-	std::vector<size_t> byStart(n);
-	std::iota(byStart.begin(), byStart.end(), size_t{0});
-	std::sort(byStart.begin(), byStart.end(), [&](size_t a, size_t b) { return lo[a].x() < lo[b].x(); });
+	// Sweep along x: a pair's centres are closer than half the narrower
+	// width, so the one further left reaches the other within half its own.
+	std::vector<size_t> byX(n);
+	std::iota(byX.begin(), byX.end(), size_t{0});
+	std::sort(byX.begin(), byX.end(), [&](size_t a, size_t b) { return boxes[a].center.x() < boxes[b].center.x(); });
+	const auto width = [&](size_t i) { return std::min(boxes[i].extent.x(), boxes[i].extent.y()); };
 	Groups g(n);
 	for (size_t s = 0; s < n; s++)
 	{
-		const size_t i = byStart[s];
-		for (size_t t = s + 1; t < n && lo[byStart[t]].x() <= hi[i].x(); t++)
+		const size_t i = byX[s];
+		for (size_t t = s + 1; t < n && boxes[byX[t]].center.x() - boxes[i].center.x() < 0.5 * width(i); t++)
 		{
-			const size_t j = byStart[t];
-			if (lo[j].y() <= hi[i].y() && lo[i].y() <= hi[j].y() && lo[j].z() <= hi[i].z() && lo[i].z() <= hi[j].z())
-				g.join(i, j);
+			const size_t j = byX[t];
+			if ((boxes[i].center - boxes[j].center).norm() < 0.5 * std::min(width(i), width(j))) g.join(i, j);
 		}
 	}
 	std::vector<std::vector<size_t>> groups;

@@ -1,12 +1,12 @@
 // Stage 4-6's schedule: which candidates are decoded, by which worker, in
-// what order. Overlapping candidates (the clusterings at two tolerances, the
-// density levels, square windows along a long box) often hold one tag: on
-// the Livox windows of `observe` each tag was decoded 3.7 times, and the
-// merge kept one of them. A candidate centred on a tag that a candidate
-// before it already decoded is not decoded again. Whether one is skipped
-// depends only on the candidates before it in its group, and a group is
-// decoded by one worker in a fixed order (the driver's: the largest
-// cluster first): the result is the same for any thread count.
+// what order. Several candidates (the clusterings at two tolerances, the
+// density levels) are often one tag's: on the Livox windows of `observe`
+// each tag was decoded 3.7 times, and the merge kept one of them. A
+// candidate centred on a tag that a candidate of its group already decoded
+// is not decoded again. Whether one is skipped depends only on the
+// candidates before it in its group, and a group is decoded by one worker
+// in a fixed order (the driver's: the largest cluster first): the result
+// is the same for any thread count.
 #pragma once
 
 #include <cstddef>
@@ -17,10 +17,15 @@
 
 namespace tagmap
 {
-/** The boxes as groups whose axis-aligned bounds overlap, joined through
- *  any chain of overlaps (connected components): each group in ascending
- *  index, the groups in order of their first index. */
-std::vector<std::vector<size_t>> overlappingBoxGroups(const std::vector<OrientedBox>& boxes);
+/** The boxes as groups of nearly the same centre: two boxes whose centres
+ *  are closer than half the narrower one's width are in one group, and
+ *  so is any chain of such pairs (connected components). Each group in
+ *  ascending index, the groups in order of their first index. Boxes of
+ *  one tag (its clusters at two tolerances and density levels) are
+ *  centred on it; boxes that merely overlap (a window grid's panes, the
+ *  square windows along a wall, a large box over several small ones) are
+ *  not joined, so the groups stay small enough to share among threads. */
+std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedBox>& boxes);
 
 /** True when `box` was proposed for `tag`: its centre lies within half
  *  the tag's size of the tag's centre (the merge's "one square",
