@@ -27,14 +27,15 @@ struct CandidateDecoders
 	const SoftTagDecoder& soft;
 };
 
-/** What the candidates hold, as tags: candidates of nearly one centre in groups
- *  (decode_schedule.h), each group on one worker with its own decoders
- *  (`decodersFor(worker)`), the candidate of the most cluster points
- *  first, a candidate centred on a tag its group decoded before it not
- *  decoded again; each candidate's report
- *  (`reports[candidate.report]`) says what happened. Results are stored
- *  per candidate index, so the output is the same for any thread count. `progress`: candidates done. `viewpoints`: where the map's
- *  sensors stood, if known (front_side.h: seenOnlyFromBehind(), on `grid`). */
+/** What the candidates hold, as tags: candidates of nearly one centre in
+ *  groups (decode_schedule.h), each group on one worker with its own
+ *  decoders (`decodersFor(worker)`), the candidate of the most cluster
+ *  points first, a candidate centred on a tag its group decoded before it
+ *  not decoded again; each candidate's report (`reports[candidate.report]`)
+ *  says what happened. Results are stored per candidate index, so the
+ *  output is the same for any thread count. `progress`: candidates done.
+ *  `viewpoints`: where the map's sensors stood, if known (front_side.h:
+ *  seenOnlyFromBehind(), on `grid`). */
 std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapView& m, const VoxelGrid& grid,
 										   const OctreeGatherer& gatherer, const std::vector<Eigen::Vector3d>& viewpoints,
 										   const DerivedLengths& len, const std::vector<std::string>& decodedFamilies,

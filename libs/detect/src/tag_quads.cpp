@@ -225,13 +225,13 @@ std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSid
 	// 3: our images are splatted and blurred over about a pixel or more,
 	// where a 3-pixel window compares a pixel with its own blur. Its
 	// outlines were a third of this search and changed nothing: without
-	// them the same JSON on 24 randomized maps and the 9 devset maps, the
-	// same sightings on a scan's sensor view (docs/PERFORMANCE.md).
+	// them the same JSON on 24 randomized maps and the 9 devset maps, one
+	// more sighting in 200 spinning scans' views (docs/PERFORMANCE.md).
 	detParams->adaptiveThreshWinSizeMin = 13;
 	detParams->adaptiveThreshWinSizeMax = 23;
 	cv::aruco::detectMarkers(gray8, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), accepted, ids, detParams,
 							 quads);
-	quads.insert(quads.begin(), accepted.begin(), accepted.end());  // sub-pixel refined: preferred
+	quads.insert(quads.begin(), accepted.begin(), accepted.end());  // first: kept where both lists hold an outline
 	addDarkBlobOutlines(gray8, quads, minArea);
 	quads = withoutDuplicates(quads);
 	std::stable_sort(quads.begin(), quads.end(),
