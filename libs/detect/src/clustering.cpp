@@ -4,32 +4,14 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
+#include "disjoint_sets.h"
 #include "tagmap/point_stats.h"
 #include "tagmap/voxel_grid.h"
 
 namespace tagmap
 {
-namespace
-{
-struct DisjointSets
-{
-	std::vector<uint32_t> parent;
-	explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-	uint32_t find(uint32_t a)
-	{
-		while (parent[a] != a) a = parent[a] = parent[parent[a]];
-		return a;
-	}
-	void unite(uint32_t a, uint32_t b)
-	{
-		a = find(a);
-		b = find(b);
-		if (a != b) parent[std::max(a, b)] = std::min(a, b);
-	}
-};
-}  // namespace
+using detail::DisjointSets;
 
 OrientedBox fitOrientedBox(const float* xs, const float* ys, const float* zs, const std::vector<uint32_t>& points)
 {

@@ -3,28 +3,10 @@
 #include <algorithm>
 #include <numeric>
 
+#include "disjoint_sets.h"
+
 namespace tagmap
 {
-namespace
-{
-// Union-find over box indices; a root is its group's smallest index.
-struct Groups
-{
-	std::vector<size_t> parent;
-	explicit Groups(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), size_t{0}); }
-	size_t root(size_t i)
-	{
-		while (parent[i] != i) i = parent[i] = parent[parent[i]];
-		return i;
-	}
-	void join(size_t a, size_t b)
-	{
-		a = root(a), b = root(b);
-		if (a != b) parent[std::max(a, b)] = std::min(a, b);
-	}
-};
-}  // namespace
-
 std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedBox>& boxes)
 {
 	const size_t n = boxes.size();
@@ -34,21 +16,21 @@ std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedB
 	std::iota(byX.begin(), byX.end(), size_t{0});
 	std::sort(byX.begin(), byX.end(), [&](size_t a, size_t b) { return boxes[a].center.x() < boxes[b].center.x(); });
 	const auto width = [&](size_t i) { return std::min(boxes[i].extent.x(), boxes[i].extent.y()); };
-	Groups g(n);
+	detail::DisjointSets sets(n);
 	for (size_t s = 0; s < n; s++)
 	{
 		const size_t i = byX[s];
 		for (size_t t = s + 1; t < n && boxes[byX[t]].center.x() - boxes[i].center.x() < 0.5 * width(i); t++)
 		{
 			const size_t j = byX[t];
-			if ((boxes[i].center - boxes[j].center).norm() < 0.5 * std::min(width(i), width(j))) g.join(i, j);
+			if ((boxes[i].center - boxes[j].center).norm() < 0.5 * std::min(width(i), width(j))) sets.unite(static_cast<uint32_t>(i), static_cast<uint32_t>(j));
 		}
 	}
 	std::vector<std::vector<size_t>> groups;
 	std::vector<size_t> groupOfRoot(n, n);
 	for (size_t i = 0; i < n; i++)  // ascending: a root comes first in its group
 	{
-		const size_t r = g.root(i);
+		const size_t r = sets.find(static_cast<uint32_t>(i));
 		if (groupOfRoot[r] == n)
 		{
 			groupOfRoot[r] = groups.size();
