@@ -384,3 +384,38 @@ TEST(Pipeline, FindsATagPartlyInAScanGap)
 	EXPECT_EQ(found.tags[0].id, truth.id);
 	EXPECT_LT((found.tags[0].position() - truth.position()).norm(), 0.01);
 }
+
+TEST(Pipeline, ABoxHoldingADecodedTagStillReadsTheTagBesideIt)
+{
+	// Two tags 0.36 m apart on one wall: a square window between them
+	// holds both. Its read of the first, which a window of its group
+	// decoded before it, is not verified again (on_decoded_tag); the
+	// second tag, which it also holds, is still read there.
+	WallScene a, b;
+	a.size = 0.24, b.size = 0.16, b.family = "tag25h9", b.id = 3, b.seed = 2;
+	a.wall = b.wall = 0.36;
+	a.T_G_wall = wallPose(0, M_PI / 2, Eigen::Vector3d(3, 0, 1));
+	b.T_G_wall = wallPose(0, M_PI / 2, Eigen::Vector3d(3.36, 0, 1));
+	TagDetection ta, tb;
+	mrpt::maps::CPointsMapXYZI map = makeWall(a, ta);
+	const mrpt::maps::CPointsMapXYZI second = makeWall(b, tb);
+	map.insertAnotherMap(&second, mrpt::poses::CPose3D());
+	const Detections found = Pipeline().detect(map, ProgressFn{}, true);
+	ASSERT_EQ(found.tags.size(), 2u);
+	size_t holdingBoth = 0;
+	for (const CandidateReport& c : found.candidates)
+	{
+		if (c.verdict != Verdict::Decoded) continue;
+		bool skipped = false, read = false;
+		for (size_t r = 0; r < c.decoded.size(); r++)
+		{
+			skipped |= c.decoded[r].family == "tag36h11" && c.readVerdicts[r] == Verdict::OnDecodedTag;
+			read |= c.decoded[r].family == "tag25h9" && c.readVerdicts[r] == Verdict::Decoded;
+		}
+		if (!(skipped && read)) continue;
+		holdingBoth++;
+		ASSERT_TRUE(c.onTagOf.has_value());  // not its verdict, but where its skipped read was decoded
+		EXPECT_EQ(found.candidates.at(*c.onTagOf).verdict, Verdict::Decoded);
+	}
+	EXPECT_GE(holdingBoth, 1u);
+}

@@ -296,9 +296,9 @@ TEST(DecodeSchedule, ABoxCentredOnADecodedTagIsNotDecodedAgain)
 	OrientedBox b;
 	b.extent = Eigen::Vector3d(0.6, 0.5, 0.02);
 	b.center = t.position() + Eigen::Vector3d(0.19, 0, 0);  // within half its size
-	EXPECT_TRUE(centredOnDecodedTag(b, t));
+	EXPECT_TRUE(onDecodedTag(b.center, t));
 	b.center = t.position() + Eigen::Vector3d(0, 0.21, 0);  // beyond: another square
-	EXPECT_FALSE(centredOnDecodedTag(b, t));
+	EXPECT_FALSE(onDecodedTag(b.center, t));
 }
 
 TEST(MergeDetections, OneSquareOneTag)

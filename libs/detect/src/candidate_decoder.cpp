@@ -28,6 +28,20 @@ void reject(CandidateReport& rep, Verdict why)
 	if (rep.verdict != Verdict::Decoded) rep.verdict = why;
 }
 
+// The tags a candidate's group decoded before it, each with the index of
+// the report of the candidate that decoded it (decode_schedule.h).
+using EarlierTags = std::vector<std::pair<const TagDetection*, size_t>>;
+
+// The report index of the earlier tag `point` lies on, if any.
+std::optional<size_t> earlierTagAt(const Eigen::Vector3d& point, const EarlierTags& earlier)
+{
+	for (const auto& [tag, report] : earlier)
+		if (onDecodedTag(point, *tag)) return report;
+	return std::nullopt;
+}
+
+Eigen::Vector2d centreOf(const Quad& q) { return 0.25 * (q[0] + q[1] + q[2] + q[3]); }
+
 // What decoding one candidate gives: its tags and its report.
 struct CandidateOutcome
 {
@@ -70,22 +84,24 @@ class CandidateDecoder
 	 *  read cut off by the candidate's image is decoded once more on an
 	 *  image of the box its whole grid fits in: families with data cells
 	 *  outside their border (tagStandard41h12, tagCircle49h12: 1.7-2.2 times
-	 *  the border across) reach past a box drawn around part of the tag. */
+	 *  the border across) reach past a box drawn around part of the tag.
+	 *  Outlines and reads on a tag of `earlier` are not decoded or verified
+	 *  again. */
 	CandidateOutcome decodeCandidate(const Candidate& candidate, CandidateReport rep, const TagDecoder& hard,
-									 const SoftTagDecoder& soft) const
+									 const SoftTagDecoder& soft, const EarlierTags& earlier) const
 	{
-		CandidateOutcome out = decodeBox(candidate, std::move(rep), hard, soft);
+		CandidateOutcome out = decodeBox(candidate, std::move(rep), hard, soft, earlier);
 		if (!out.tags.empty() || !out.readCutOff) return out;
 		Candidate recentred = candidate;
 		recentred.box = *out.readCutOff;
 		recentred.box.extent.z() = candidate.box.extent.z();  // the same slab about the plane
-		CandidateOutcome again = decodeBox(recentred, out.report, hard, soft);
+		CandidateOutcome again = decodeBox(recentred, out.report, hard, soft, earlier);
 		return again.tags.empty() ? out : again;
 	}
 
    private:
 	CandidateOutcome decodeBox(const Candidate& candidate, CandidateReport rep, const TagDecoder& hard,
-							   const SoftTagDecoder& soft) const
+							   const SoftTagDecoder& soft, const EarlierTags& earlier) const
 	{
 		const OrientedBox& box = candidate.box;
 		CandidateOutcome out{{}, std::move(rep), std::nullopt};
@@ -117,13 +133,26 @@ class CandidateDecoder
 		// and a tag it reads here needs neither (the raw image's decode with
 		// the quads adds only ArUco reads of them).
 		const std::vector<Quad> noQuads;
-		if (candidate.aprilTagInView && tryReads(hard.decode(plane.gray, &noQuads), plane.gray, 1.0, plane, out))
+		if (candidate.aprilTagInView &&
+			tryReads(hard.decode(plane.gray, &noQuads), plane.gray, 1.0, plane, earlier, out))
 			return out;
 		// The raw image's quads serve the ArUco decode of every variant and
 		// the soft decoder: they already hold the Otsu dark-blob outlines,
 		// so searching the binarised and half-size variants again found the
 		// same squares at twice the cost.
 		std::vector<Quad> quads = findTagQuads(plane.gray, std::numeric_limits<int>::max());
+		// Outlines on a tag the group decoded before: the box holds it (a
+		// box off its centre, up to twice its size around it, the density
+		// levels' and the square windows'), and its read would be that tag
+		// again. What else the box holds is still decoded.
+		std::optional<size_t> onTagOf;
+		quads.erase(std::remove_if(quads.begin(), quads.end(),
+								   [&](const Quad& q) {
+									   const auto on = earlierTagAt(plane.frame.toMap(centreOf(q)), earlier);
+									   if (on && !onTagOf) onTagOf = on;
+									   return on.has_value();
+								   }),
+					quads.end());
 		// The cheapest sure test on the image: most clutter (window grids)
 		// has outlines only of one colour inside, or too small to be a tag.
 		// libapriltag, the costliest decoder, would search it three times.
@@ -132,28 +161,42 @@ class CandidateDecoder
 		// outline number 9.
 		if (std::none_of(quads.begin(), quads.end(), [&](const Quad& q) { return mayShowATag(q, plane); }))
 		{
-			out.report.verdict = Verdict::NoCodeShown;
+			out.report.verdict = onTagOf ? Verdict::OnDecodedTag : Verdict::NoCodeShown;
+			if (!out.report.onTagOf) out.report.onTagOf = onTagOf;
 			return out;
 		}
 		quads.resize(std::min(quads.size(), static_cast<size_t>(std::max(0, p_.decoder.maxQuads))));  // largest first
 		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
 		{
 			const std::vector<Quad> variantQuads = scaledQuads(quads, 1.0 / variant.scale);
-			if (tryReads(hard.decode(variant.gray, &variantQuads), variant.gray, variant.scale, plane, out))
+			if (tryReads(hard.decode(variant.gray, &variantQuads), variant.gray, variant.scale, plane, earlier, out))
 				return out;
 		}
 		// Last resort for blurred tags: correlate quads with every code.
-		tryReads(soft.decode(plane.gray, quads, &plane.measured), plane.gray, 1.0, plane, out);
+		tryReads(soft.decode(plane.gray, quads, &plane.measured), plane.gray, 1.0, plane, earlier, out);
 		return out;
 	}
 
 	// Judges each read on the image it was read from, before anything
 	// costly, then in 3D; true when the candidate has a tag.
 	bool tryReads(std::vector<DecodedTag2D> reads, const cv::Mat& image, double scale, const PlaneImage& plane,
-				  CandidateOutcome& out) const
+				  const EarlierTags& earlier, CandidateOutcome& out) const
 	{
 		for (DecodedTag2D& d : reads)
 		{
+			// libapriltag finds its own outlines, the group's earlier tags too.
+			if (const auto on = earlierTagAt(plane.frame.toMap(scale * centreOf(d.corners)), earlier))
+			{
+				for (auto& c : d.corners) c *= scale;
+				if (keepImages_)
+				{
+					out.report.decoded.push_back(d);
+					out.report.readVerdicts.push_back(Verdict::OnDecodedTag);
+				}
+				reject(out.report, Verdict::OnDecodedTag);
+				if (!out.report.onTagOf) out.report.onTagOf = on;
+				continue;
+			}
 			ReadEvidence ev = judgeRead(image, d, scale, plane, p_.evidence);
 			// A quad traced on a noisy or blurred border can sit a fraction
 			// of a cell off, and the cells along its edges then read their
@@ -364,26 +407,23 @@ std::vector<TagDetection> decodeCandidates(const PipelineParams& p, const MapVie
 		const CandidateDecoders decoders = decodersFor(worker);
 		for (size_t g = b; g < e; g++)
 		{
-			// The tags the group's candidates decoded so far, with the candidate.
-			std::vector<std::pair<const TagDetection*, size_t>> decoded;
+			// The tags the group's candidates decoded so far.
+			EarlierTags decoded;
 			for (const size_t k : groups[g])
 			{
 				CandidateReport& rep = reports[candidates[k].report];
-				const auto on = std::find_if(decoded.begin(), decoded.end(), [&](const auto& d) {
-					return centredOnDecodedTag(candidates[k].box, *d.first);
-				});
-				if (on != decoded.end())
+				if (const std::optional<size_t> on = earlierTagAt(candidates[k].box.center, decoded))
 				{
 					rep.verdict = Verdict::OnDecodedTag;
-					rep.onTagOf = candidates[on->second].report;
+					rep.onTagOf = on;
 				}
 				else
 				{
 					CandidateOutcome o =
-						decoder.decodeCandidate(candidates[k], std::move(rep), decoders.hard, decoders.soft);
+						decoder.decodeCandidate(candidates[k], std::move(rep), decoders.hard, decoders.soft, decoded);
 					rep = std::move(o.report);
 					perCandidate[k] = std::move(o.tags);
-					for (const TagDetection& t : perCandidate[k]) decoded.emplace_back(&t, k);
+					for (const TagDetection& t : perCandidate[k]) decoded.emplace_back(&t, candidates[k].report);
 				}
 				progress(++finished, candidates.size());
 			}

@@ -41,9 +41,9 @@ std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedB
 	return groups;
 }
 
-bool centredOnDecodedTag(const OrientedBox& box, const TagDetection& tag)
+bool onDecodedTag(const Eigen::Vector3d& point, const TagDetection& tag)
 {
-	return (box.center - tag.position()).norm() < 0.5 * tag.size;
+	return (point - tag.position()).norm() < 0.5 * tag.size;
 }
 
 }  // namespace tagmap

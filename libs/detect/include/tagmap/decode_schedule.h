@@ -3,12 +3,14 @@
 // density levels) are often one tag's: on the Livox windows of `observe`
 // each tag was decoded 3.7 times, and the merge kept one of them. A
 // candidate centred on a tag that a candidate of its group already decoded
-// is not decoded again. Whether one is skipped depends only on the
+// is not decoded again, and a candidate's outlines and reads on such a tag
+// are not decoded or verified again. Whether one is skipped depends only on the
 // candidates before it in its group, and a group is decoded by one worker
 // in a fixed order (the driver's: the largest cluster first): the result
 // is the same for any thread count.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <vector>
 
@@ -27,11 +29,12 @@ namespace tagmap
  *  not joined, so the groups stay small enough to share among threads. */
 std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedBox>& boxes);
 
-/** True when `box` was proposed for `tag`: its centre lies within half
- *  the tag's size of the tag's centre (the merge's "one square",
- *  merge_detections.h: a read there would be that tag again or lose to
- *  it). Whatever else its image shows, the candidates proposed for those
- *  things read. */
-bool centredOnDecodedTag(const OrientedBox& box, const TagDetection& tag);
+/** True when `point` (a candidate box's centre, an outline's or a read's
+ *  centre on its image) lies on `tag`: within half the tag's size of its
+ *  centre (the merge's "one square", merge_detections.h: a read there would
+ *  be that tag again or lose to it). A box centred there was proposed for
+ *  the tag; whatever else its image shows lies off the tag, and is still
+ *  read there. */
+bool onDecodedTag(const Eigen::Vector3d& point, const TagDetection& tag);
 
 }  // namespace tagmap

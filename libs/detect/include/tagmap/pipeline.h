@@ -52,8 +52,10 @@ struct CandidateReport
 	/** Verdict::SameBox: the index (in Detections::candidates) of the
 	 *  earlier candidate with this box, which was decoded instead. */
 	std::optional<size_t> sameBoxAs;
-	/** Verdict::OnDecodedTag: the index (in Detections::candidates) of the
-	 *  earlier candidate that decoded the tag this box is centred on. */
+	/** The index (in Detections::candidates) of the earlier candidate that
+	 *  decoded a tag this box is centred on (Verdict::OnDecodedTag), or that
+	 *  its outlines or reads lay on (not decoded again; its verdict is
+	 *  on_decoded_tag when it read nothing else). */
 	std::optional<size_t> onTagOf;
 };
 
