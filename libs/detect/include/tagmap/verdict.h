@@ -51,7 +51,8 @@ inline constexpr std::array<VerdictInfo, 21> kVerdicts = {{
 	 "the box of an earlier candidate, to within a point spacing: it gathers the same points, decoded once"},
 	{Verdict::OnDecodedTag, "on_decoded_tag",
 	 "not decoded: its box is centred (within half the tag's size) on a tag that a candidate of its group before "
-	 "it decoded; it would read that tag again (decode_schedule.h)"},
+	 "it decoded, or its image showed outlines or reads only on such a tag; it would read that tag again "
+	 "(decode_schedule.h)"},
 	{Verdict::NotPlanar, "not_planar", "the gathered points do not fit one plane"},
 	{Verdict::NoDecode, "no_decode", "no decoder read a tag of the requested families on the image"},
 	{Verdict::NoFamilyCanPass, "no_family_can_pass",
