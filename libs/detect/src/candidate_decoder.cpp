@@ -141,10 +141,10 @@ class CandidateDecoder
 		// so searching the binarised and half-size variants again found the
 		// same squares at twice the cost.
 		std::vector<Quad> quads = findTagQuads(plane.gray, std::numeric_limits<int>::max());
-		// Outlines on a tag the group decoded before: the box holds it (a
-		// box off its centre, up to twice its size around it, the density
-		// levels' and the square windows'), and its read would be that tag
-		// again. What else the box holds is still decoded.
+		// Outlines on a tag the group decoded before: the box holds it off
+		// its centre (density levels, square windows, its board's outline:
+		// 1.5-2.4 times its size around it), and a read there would be that
+		// tag again. What else the box holds is still decoded.
 		std::optional<size_t> onTagOf;
 		quads.erase(std::remove_if(quads.begin(), quads.end(),
 								   [&](const Quad& q) {

@@ -3,11 +3,11 @@
 // density levels) are often one tag's: on the Livox windows of `observe`
 // each tag was decoded 3.7 times, and the merge kept one of them. A
 // candidate centred on a tag that a candidate of its group already decoded
-// is not decoded again, and a candidate's outlines and reads on such a tag
-// are not decoded or verified again. Whether one is skipped depends only on the
-// candidates before it in its group, and a group is decoded by one worker
-// in a fixed order (the driver's: the largest cluster first): the result
-// is the same for any thread count.
+// is not decoded again, nor are the outlines and reads on such a tag in a
+// larger box around it. What is skipped depends only on the candidates
+// before it in its group, and a group is decoded by one worker in a fixed
+// order (the driver's: the largest cluster first): the result is the same
+// for any thread count.
 #pragma once
 
 #include <Eigen/Core>
