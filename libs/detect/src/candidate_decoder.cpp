@@ -182,18 +182,23 @@ class CandidateDecoder
 	bool tryReads(std::vector<DecodedTag2D> reads, const cv::Mat& image, double scale, const PlaneImage& plane,
 				  const EarlierTags& earlier, CandidateOutcome& out) const
 	{
+		// What became of read `d` (corners at the plane image's scale), for
+		// the report; the candidate's verdict when no read became a tag.
+		const auto record = [&](const DecodedTag2D& d, Verdict v) {
+			if (keepImages_)
+			{
+				out.report.decoded.push_back(d);
+				out.report.readVerdicts.push_back(v);
+			}
+			if (v != Verdict::Decoded) reject(out.report, v);
+		};
 		for (DecodedTag2D& d : reads)
 		{
 			// libapriltag finds its own outlines, the group's earlier tags too.
 			if (const auto on = earlierTagAt(plane.frame.toMap(scale * centreOf(d.corners)), earlier))
 			{
 				for (auto& c : d.corners) c *= scale;
-				if (keepImages_)
-				{
-					out.report.decoded.push_back(d);
-					out.report.readVerdicts.push_back(Verdict::OnDecodedTag);
-				}
-				reject(out.report, Verdict::OnDecodedTag);
+				record(d, Verdict::OnDecodedTag);
 				if (!out.report.onTagOf) out.report.onTagOf = on;
 				continue;
 			}
@@ -215,16 +220,8 @@ class CandidateDecoder
 			if (ev.rejection == Verdict::GridOffImage && !out.readCutOff) out.readCutOff = wholeGridBox(d, plane);
 			TagDetection t;
 			const Verdict v = ev.rejection ? *ev.rejection : verifyRead(d, ev, plane, t);
-			if (keepImages_)
-			{
-				out.report.decoded.push_back(d);
-				out.report.readVerdicts.push_back(v);
-			}
-			if (v != Verdict::Decoded)
-			{
-				reject(out.report, v);
-				continue;
-			}
+			record(d, v);
+			if (v != Verdict::Decoded) continue;
 			out.report.verdict = Verdict::Decoded;
 			if (keepImages_) out.report.decodedLabels.push_back(tagLabel(t.family, t.id));
 			out.tags.push_back(std::move(t));

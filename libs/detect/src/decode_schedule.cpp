@@ -23,7 +23,8 @@ std::vector<std::vector<size_t>> concentricBoxGroups(const std::vector<OrientedB
 		for (size_t t = s + 1; t < n && boxes[byX[t]].center.x() - boxes[i].center.x() < 0.5 * width(i); t++)
 		{
 			const size_t j = byX[t];
-			if ((boxes[i].center - boxes[j].center).norm() < 0.5 * std::min(width(i), width(j))) sets.unite(static_cast<uint32_t>(i), static_cast<uint32_t>(j));
+			if ((boxes[i].center - boxes[j].center).norm() < 0.5 * std::min(width(i), width(j)))
+				sets.unite(static_cast<uint32_t>(i), static_cast<uint32_t>(j));
 		}
 	}
 	std::vector<std::vector<size_t>> groups;
