@@ -133,9 +133,19 @@ class CandidateDecoder
 		// and a tag it reads here needs neither (the raw image's decode with
 		// the quads adds only ArUco reads of them).
 		const std::vector<Quad> noQuads;
-		if (candidate.aprilTagInView &&
+		if (candidate.readInView == ReadInView::AprilTag &&
 			tryReads(hard.decode(plane.gray, &noQuads), plane.gray, 1.0, plane, earlier, out))
 			return out;
+		// Where the soft decoder read a blurred tag in the view, it reads the
+		// image on the view's quad first: the outline search and libapriltag's
+		// variants would mostly search a blurred tag in vain.
+		if (candidate.readInView == ReadInView::Soft)
+		{
+			Quad inView;
+			for (int k = 0; k < 4; k++) inView[k] = plane.frame.toImage(candidate.cornersInView[k]);
+			if (tryReads(soft.decode(plane.gray, {inView}, &plane.measured), plane.gray, 1.0, plane, earlier, out))
+				return out;
+		}
 		// The raw image's quads serve the ArUco decode of every variant and
 		// the soft decoder: they already hold the Otsu dark-blob outlines,
 		// so searching the binarised and half-size variants again found the

@@ -170,7 +170,8 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewR
 	for (const DecodedTag2D& d : seen.reads)
 	{
 		OrientedBox box;
-		if (!boxOfRead(seen.view, d, m.xs, m.ys, m.zs, near, len.candidateBand, box)) continue;
+		std::array<Eigen::Vector3d, 4> corners;
+		if (!boxOfRead(seen.view, d, m.xs, m.ys, m.zs, near, len.candidateBand, box, &corners)) continue;
 		const bool again = std::any_of(candidates.begin(), candidates.end(), [&](const Candidate& c) {
 			return (c.box.center - box.center).norm() < 0.25 * std::min(box.extent.x(), box.extent.y());
 		});
@@ -182,8 +183,10 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewR
 		rep.verdict = why.value_or(Verdict::Candidate);
 		reports.push_back(rep);
 		const TagFamilyInfo* family = findFamily(d.family);
-		const bool aprilTag = family && family->system == TagSystem::AprilTag && d.hamming >= 0;  // not a soft read
-		if (!why) candidates.push_back({reports.size() - 1, box, aprilTag});
+		const ReadInView by = d.hamming < 0 ? ReadInView::Soft  // the soft decoder decides no bits
+							  : family && family->system == TagSystem::AprilTag ? ReadInView::AprilTag
+																			   : ReadInView::None;
+		if (!why) candidates.push_back({reports.size() - 1, box, by, corners});
 	}
 	return candidates;
 }

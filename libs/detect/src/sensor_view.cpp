@@ -188,7 +188,8 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 }
 
 bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs, const float* ys, const float* zs,
-			   const std::vector<uint32_t>& points, double band, OrientedBox& box)
+			   const std::vector<uint32_t>& points, double band, OrientedBox& box,
+			   std::array<Eigen::Vector3d, 4>* cornersOut)
 {
 	if (view.gray.empty()) return false;
 	// The points inside the quad shrunk by 10 % towards its centre: the
@@ -256,6 +257,7 @@ bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs
 	const double grow = cells > 0 ? (cells + 2.0) / cells : 1.0;
 	box.extent = Eigen::Vector3d(grow * 0.5 * across.norm() + 2 * band, grow * 0.5 * std::abs(down.dot(box.axes.col(1))) + 2 * band,
 								 box.thickness);
+	if (cornersOut) *cornersOut = corners;
 	return true;
 }
 

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -82,10 +83,12 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
  *  each side, height (and thickness) 4x the RMS of
  *  those points about the plane. `points`: the scan's points to look
  *  among (ascending; all of them, or pointsNearReads(), which holds every
- *  point inside a read's quad). False when fewer than 8 points fall
- *  inside the quad or a corner's ray misses that plane. */
+ *  point inside a read's quad). `corners` (optional): those 3D corners,
+ *  in the read's order. False when fewer than 8 points fall inside the
+ *  quad or a corner's ray misses that plane. */
 bool boxOfRead(const SensorView& view, const DecodedTag2D& read, const float* xs, const float* ys, const float* zs,
-			   const std::vector<uint32_t>& points, double band, OrientedBox& box);
+			   const std::vector<uint32_t>& points, double band, OrientedBox& box,
+			   std::array<Eigen::Vector3d, 4>* corners = nullptr);
 
 /** The scan's points (indices) seen within `sides` quad sides of a read:
  *  each read's quad, its bounding rectangle widened by `sides` times its
