@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,24 +20,18 @@ namespace tagmap::detail
  *  or half the size is no tag. */
 constexpr double kGivenSizeTolerance = 0.3;
 
-/** Which decoder read a candidate's tag in the scan's sensor view, if any:
- *  its image is read that way first. */
-enum class ReadInView
-{
-	None,  // a candidate of the map path
-	AprilTag,  // libapriltag: on the raw image, before any clutter test
-	Soft  // the soft decoder (a blurred tag): on the view's quad, moved onto the image
-};
-
 // A candidate: the box to gather around, and the report it fills in.
 struct Candidate
 {
 	size_t report;  // into Detections::candidates
 	OrientedBox box;
-	ReadInView readInView = ReadInView::None;
-	/** The view read's corners on the tag's plane (boxOfRead()), when read in the view. */
-	std::array<Eigen::Vector3d, 4> cornersInView = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-													Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+	/** Proposed by a read of the scan's sensor view: the read's corners on
+	 *  the tag's plane (boxOfRead()), where the candidate image is read
+	 *  first. */
+	std::optional<std::array<Eigen::Vector3d, 4>> cornersInView;
+	/** That read was libapriltag's: its image is then read by it next,
+	 *  before any clutter test. */
+	bool aprilTagInView = false;
 };
 
 /** The candidate filter as asked: --tag-size, when given, is the only size. */

@@ -115,7 +115,7 @@ std::vector<Candidate> proposeCandidates(const MapView& m, const std::vector<Clu
 	std::vector<Candidate> candidates;
 	ProposedBoxes proposed(len.spacing);
 	const auto propose = [&](const OrientedBox& box) {
-		candidates.push_back({reports.size() - 1, box});
+		candidates.push_back({reports.size() - 1, box, std::nullopt, false});
 		proposed.add(candidates.back());
 	};
 	for (const Cluster& c : clusters)
@@ -183,10 +183,8 @@ std::vector<Candidate> proposeFromSensorView(const MapView& m, const SensorViewR
 		rep.verdict = why.value_or(Verdict::Candidate);
 		reports.push_back(rep);
 		const TagFamilyInfo* family = findFamily(d.family);
-		const ReadInView by = d.hamming < 0 ? ReadInView::Soft  // the soft decoder decides no bits
-							  : family && family->system == TagSystem::AprilTag ? ReadInView::AprilTag
-																			   : ReadInView::None;
-		if (!why) candidates.push_back({reports.size() - 1, box, by, corners});
+		const bool aprilTag = family && family->system == TagSystem::AprilTag && d.hamming >= 0;  // not a soft read
+		if (!why) candidates.push_back({reports.size() - 1, box, corners, aprilTag});
 	}
 	return candidates;
 }
