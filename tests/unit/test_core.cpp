@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "tagmap/atomic_file.h"
+#include "tagmap/fast_atan2.h"
 #include "tagmap/tag_family.h"
 #include "tagmap/tags_json.h"
 
@@ -167,4 +168,24 @@ TEST(TagFamily, MinimumHammingDistanceMatchesTheCodes)
 		}
 		EXPECT_EQ(f.minHamming, fewest) << f.name;
 	}
+}
+
+TEST(FastAtan2, WithinItsBoundOfStdAtan2EverywhereOnTheCircleAndAtTheAxes)
+{
+	// Every direction (10^5 around the circle, at radii from 1e-3 to 1e3),
+	// the axes and both zeros: within the bound the sensor view relies on.
+	double worst = 0;
+	for (int k = 0; k < 100000; k++)
+		for (double r : {1e-3, 1.0, 1e3})
+		{
+			const double a = -M_PI + 2 * M_PI * k / 100000, y = r * std::sin(a), x = r * std::cos(a);
+			worst = std::max(worst, std::abs(tagmap::fastAtan2(y, x) - std::atan2(y, x)));
+		}
+	EXPECT_LT(worst, 6e-9);
+	EXPECT_DOUBLE_EQ(tagmap::fastAtan2(0, 1), 0);
+	EXPECT_NEAR(tagmap::fastAtan2(1, 0), M_PI / 2, 1e-15);
+	EXPECT_NEAR(tagmap::fastAtan2(0, -1), M_PI, 1e-15);
+	EXPECT_NEAR(tagmap::fastAtan2(-1, 0), -M_PI / 2, 1e-15);
+	EXPECT_NEAR(tagmap::fastAtan2(1, 1), M_PI / 4, 6e-9);
+	EXPECT_EQ(tagmap::fastAtan2(0, 0), 0);
 }

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
+#include "tagmap/fast_atan2.h"
 #include "tagmap/intermediate_plane.h"
 #include "tagmap/point_stats.h"
 #include "tagmap/tag_family.h"
@@ -120,7 +121,7 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 		const double h = static_cast<float>(std::sqrt(static_cast<double>(xs[i]) * xs[i] + static_cast<double>(ys[i]) * ys[i]));
 		if (!(h > 0 || zs[i] != 0) || !std::isfinite(h) || !std::isfinite(zs[i]) || !std::isfinite(is[i])) continue;
 		valid.push_back(static_cast<uint32_t>(i));
-		ae.emplace_back(std::atan2(ys[i], xs[i]), std::atan2(zs[i], h));
+		ae.emplace_back(fastAtan2(ys[i], xs[i]), fastAtan2(zs[i], h));
 	}
 	if (valid.size() < 16) return view;
 	const double overlap = p.seamOverlapDeg * kPi / 180;
