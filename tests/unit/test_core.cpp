@@ -173,7 +173,7 @@ TEST(TagFamily, MinimumHammingDistanceMatchesTheCodes)
 TEST(FastAtan2, WithinItsBoundOfStdAtan2EverywhereOnTheCircleAndAtTheAxes)
 {
 	// Every direction (10^5 around the circle, at radii from 1e-3 to 1e3),
-	// the axes and both zeros: within the bound the sensor view relies on.
+	// the axes and the origin: within the bound the sensor view relies on.
 	double worst = 0;
 	for (int k = 0; k < 100000; k++)
 		for (double r : {1e-3, 1.0, 1e3})

@@ -129,10 +129,10 @@ class CandidateDecoder
 		}
 		if (keepImages_) out.report.image = plane.gray;
 		// Where the sensor view read a tag, the soft decoder first reads the
-		// image on the view's quad (0.05 ms), then, for a libapriltag read,
-		// libapriltag the raw image (0.45 ms); the outline search, the look
-		// below and the decoders' variants sort clutter out, and a tag read
-		// here needs none of them.
+		// image on the view's quad (0.05 ms), then, for a read of
+		// libapriltag's, libapriltag the raw image (0.45 ms). The outline
+		// search, the look below and the decoders' variants sort clutter
+		// out; a tag read here needs none of them.
 		if (candidate.cornersInView)
 		{
 			Quad inView;
