@@ -50,10 +50,27 @@ double estimateSurfaceNoise(const float* xs, const float* ys, const float* zs, s
 	std::vector<uint32_t> scratch;
 	std::vector<double> rms;
 	double radius = grid.cellSize();
+	// No more samples than the points hold neighbourhoods apart: beyond n
+	// over a neighbourhood's points they share most of their points and
+	// add little to the median. A scan's points near its reads (10 k, ~14
+	// a neighbourhood) hold ~650; maps hold far more than p.samples, and
+	// sample as before. A pilot of 64 evenly strided points measures the
+	// neighbourhood's size.
+	size_t cap = p.samples;
+	{
+		const size_t pilot = 64, stride = std::max<size_t>(1, n / pilot);
+		size_t found = 0, count = 0;
+		for (size_t i = stride / 2; i < n; i += stride, count++)
+		{
+			neighbourhoodRms(xs, ys, zs, grid, static_cast<uint32_t>(i), radius, p.minNeighbours, scratch);
+			found += scratch.size();
+		}
+		if (found > 0) cap = std::max<size_t>(200, std::min(p.samples, n * count / found));
+	}
 	for (int doubling = 0; doubling <= p.maxDoublings; doubling++, radius *= 2)
 	{
 		rms.clear();
-		const size_t samples = std::max<size_t>(p.samples >> doubling, std::min<size_t>(p.samples, 200));
+		const size_t samples = std::max<size_t>(cap >> doubling, std::min<size_t>(cap, 200));
 		const size_t stride = std::max<size_t>(1, n / samples);
 		for (size_t i = stride / 2; i < n; i += stride)
 		{

@@ -18,7 +18,9 @@ struct SurfaceNoiseParams
 	/** Sample points, evenly strided through the map. The thresholds take
 	 *  a few noise levels each, so the median of 1000 is ample: 2000 gave
 	 *  the same tags on every map and scan measured, at twice the cost
-	 *  (1.9 of a 25 k-point scan's 16 ms). */
+	 *  (1.9 of a 25 k-point scan's 16 ms). At most as many as the points
+	 *  hold neighbourhoods apart (n over a pilot's mean neighbours), at
+	 *  least 200. */
 	size_t samples = 1000;
 	size_t minNeighbours = 12;	// fewer: no plane fitted at that sample
 	/** A ball of radius R truncates a slab thicker than about R/2, so the
