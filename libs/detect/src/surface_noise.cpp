@@ -13,8 +13,9 @@ namespace
 // Plane-fit RMS of the points within `radius` of point i, or -1 when too
 // few. At most ~256 neighbours are used (a strided subset): enough for a
 // standard deviation, and bounded cost in dense scans.
-double neighbourhoodRms(const float* xs, const float* ys, const float* zs, const VoxelGrid& grid, uint32_t i,
-						double radius, size_t minNeighbours, std::vector<uint32_t>& scratch)
+// The points within `radius` of point i, into `scratch`.
+void neighboursWithin(const float* xs, const float* ys, const float* zs, const VoxelGrid& grid, uint32_t i,
+					  double radius, std::vector<uint32_t>& scratch)
 {
 	const Eigen::Vector3f p(xs[i], ys[i], zs[i]);
 	const int reach = static_cast<int>(std::ceil(radius / grid.cellSize()));
@@ -24,6 +25,13 @@ double neighbourhoodRms(const float* xs, const float* ys, const float* zs, const
 		for (const uint32_t* q = grid.begin(v); q != grid.end(v); ++q)
 			if ((Eigen::Vector3f(xs[*q], ys[*q], zs[*q]) - p).squaredNorm() <= r2) scratch.push_back(*q);
 	});
+}
+
+double neighbourhoodRms(const float* xs, const float* ys, const float* zs, const VoxelGrid& grid, uint32_t i,
+						double radius, size_t minNeighbours, std::vector<uint32_t>& scratch)
+{
+	const Eigen::Vector3f p(xs[i], ys[i], zs[i]);
+	neighboursWithin(xs, ys, zs, grid, i, radius, scratch);
 	if (scratch.size() < minNeighbours) return -1;
 	const size_t stride = std::max<size_t>(1, scratch.size() / 256);
 	Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -62,10 +70,10 @@ double estimateSurfaceNoise(const float* xs, const float* ys, const float* zs, s
 		size_t found = 0, count = 0;
 		for (size_t i = stride / 2; i < n; i += stride, count++)
 		{
-			neighbourhoodRms(xs, ys, zs, grid, static_cast<uint32_t>(i), radius, p.minNeighbours, scratch);
+			neighboursWithin(xs, ys, zs, grid, static_cast<uint32_t>(i), radius, scratch);
 			found += scratch.size();
 		}
-		if (found > 0) cap = std::max<size_t>(200, std::min(p.samples, n * count / found));
+		if (found > 0) cap = std::max(std::min<size_t>(p.samples, 200), std::min(p.samples, n * count / found));
 	}
 	for (int doubling = 0; doubling <= p.maxDoublings; doubling++, radius *= 2)
 	{
