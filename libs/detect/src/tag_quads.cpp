@@ -205,16 +205,18 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 		// Blurred outlines are ragged: simplify their convex hull, loosening
 		// the tolerance until four corners remain.
 		if (cv::contourArea(c) < minArea) continue;
+		// The hull once: the smallest rectangle around the hull is the
+		// contour's (minAreaRect would take the whole contour's hull again).
+		std::vector<cv::Point> hull, poly;
+		cv::convexHull(c, hull);
 		// A blob too ragged for four corners may still be most of a
 		// blurred tag: the square its edges fit best is a quad too.
-		const cv::RotatedRect box = cv::minAreaRect(c);
+		const cv::RotatedRect box = cv::minAreaRect(hull);
 		if (box.size.width < 2 * box.size.height && box.size.height < 2 * box.size.width && !fittedBefore(box))
 		{
 			quads.push_back(fitBorderSquare(smooth, box));
 			fitted.push_back(box);
 		}
-		std::vector<cv::Point> hull, poly;
-		cv::convexHull(c, hull);
 		for (double eps = 0.02; eps <= 0.12 && poly.size() != 4; eps += 0.01)
 			cv::approxPolyDP(hull, poly, eps * cv::arcLength(hull, true), true);
 		if (poly.size() != 4 || cv::contourArea(poly) < 0.8 * cv::contourArea(hull)) continue;
@@ -253,7 +255,7 @@ std::vector<std::vector<cv::Point2f>> withoutDuplicates(const std::vector<std::v
 }
 }  // namespace
 
-std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide)
+std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide, bool darkBlobs)
 {
 	// Without a smallest side: a candidate image is mostly tag, and outlines
 	// under 0.2 % of it (perimeters under 5 % of its edge) are specks.
@@ -276,7 +278,7 @@ std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSid
 	cv::aruco::detectMarkers(gray8, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), accepted, ids, detParams,
 							 quads);
 	quads.insert(quads.begin(), accepted.begin(), accepted.end());  // first: kept where both lists hold an outline
-	addDarkBlobOutlines(gray8, quads, minArea);
+	if (darkBlobs) addDarkBlobOutlines(gray8, quads, minArea);
 	quads = withoutDuplicates(quads);
 	std::stable_sort(quads.begin(), quads.end(),
 					 [](const auto& a, const auto& b) { return cv::contourArea(a) > cv::contourArea(b); });
