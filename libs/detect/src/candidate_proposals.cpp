@@ -158,8 +158,9 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	// finder's windows: a Livox view's tags in the filled gaps between its
 	// petals (without them 59 instead of 75 sightings in the bench's 200
 	// frames). Where the points leave almost no holes (a spinning scan) the
-	// view is sharp and they found 1 read in 833 on three benches, for 0.8
-	// ms a scan (docs/PERFORMANCE.md, stop 45).
+	// view is sharp and they found 1 read in 833 on three benches and 9 in
+	// 1413 on the 128-beam demo, for 0.6 ms of 10.7 (4 of 36 at 128 beams;
+	// docs/PERFORMANCE.md, stop 45).
 	constexpr double kSharpView = 0.02;  // holeShare: spinning scans 0.0003-0.005, Livox 0.12-0.23
 	const std::vector<Quad> quads = findTagQuads(out.view.gray, p.sensorView.maxQuads,
 												 fewestCells * out.view.angularSpacing / out.view.pixel,
