@@ -1193,29 +1193,6 @@ TEST(SensorView, EachPointsPixelLooksBackAlongItsRay)
 	EXPECT_NEAR(v.angularSpacing * 180 / M_PI, 0.23, 0.03);
 }
 
-TEST(SensorView, MeasuresTheHolesBetweenItsPoints)
-{
-	// The wall scanned on a regular grid leaves no holes; with every other
-	// 5 cm block of points missing (a checkerboard, like the gaps between
-	// a rosette's petals) a large share of the reached pixels are holes.
-	TagDetection truth;
-	const mrpt::maps::CPointsMapXYZI m = wallInFrontOfTheSensor(truth);
-	const auto view = [](const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
-						 const std::vector<float>& i) { return renderSensorView(x.data(), y.data(), z.data(), i.data(), x.size(), {}); };
-	std::vector<float> xs, ys, zs, is, hx, hy, hz, hi;
-	for (size_t k = 0; k < m.size(); k++)
-	{
-		const float x = m.getPointsBufferRef_x()[k], y = m.getPointsBufferRef_y()[k], z = m.getPointsBufferRef_z()[k],
-					i = m.getPointsBufferRef_intensity()[k];
-		xs.push_back(x), ys.push_back(y), zs.push_back(z), is.push_back(i);
-		if ((static_cast<int>(std::floor(y / 0.05)) + static_cast<int>(std::floor(z / 0.05))) % 2 == 0)
-			hx.push_back(x), hy.push_back(y), hz.push_back(z), hi.push_back(i);
-	}
-	const SensorView whole = view(xs, ys, zs, is), holed = view(hx, hy, hz, hi);
-	EXPECT_LT(whole.holeShare, 0.005);
-	EXPECT_GT(holed.holeShare, 10 * std::max(whole.holeShare, 0.005));
-}
-
 TEST(SensorView, ReadsTheTagUnmirroredAndBoxesItsCorners)
 {
 	// As the sensor sees it, never from behind: an unmirrored decoder reads

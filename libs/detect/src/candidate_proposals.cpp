@@ -154,17 +154,8 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	// The smallest tag a scan can show: a point on every cell of the family
 	// with the fewest cells across its border square.
 	const int fewestCells = borderCellsAcross(families).fewest;
-	// Dark blobs' outlines find borders blurred wider than the contour
-	// finder's windows: a Livox view's tags in the filled gaps between its
-	// petals (without them 59 instead of 75 sightings in the bench's 200
-	// frames). Where the points leave almost no holes (a spinning scan) the
-	// view is sharp and they found 1 read in 833 on three benches and 9 in
-	// 1413 on the 128-beam demo, for 0.6 ms of 10.7 (4 of 36 at 128 beams;
-	// docs/PERFORMANCE.md, stop 45).
-	constexpr double kSharpView = 0.02;  // holeShare: spinning scans 0.0003-0.005, Livox 0.12-0.23
-	const std::vector<Quad> quads = findTagQuads(out.view.gray, p.sensorView.maxQuads,
-												 fewestCells * out.view.angularSpacing / out.view.pixel,
-												 out.view.holeShare >= kSharpView);
+	const std::vector<Quad> quads =
+		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
 	out.reads = hard.decode(out.view.gray, &quads);
 	for (DecodedTag2D& d : soft.decode(out.view.gray, quads)) out.reads.push_back(std::move(d));
 	return out;

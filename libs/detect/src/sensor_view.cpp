@@ -81,26 +81,6 @@ std::array<Eigen::Vector2d, 2> imagePositions(const SensorView& view, const Eige
 	return {Eigen::Vector2d(f.x(), f.y()), Eigen::Vector2d(f.x() - turn, f.y())};
 }
 
-/** SensorView::holeShare of `known`: runs of unknown pixels within a row,
- *  known on both ends, up to `longestRun` pixels. */
-double holeShareOf(const cv::Mat& known, double longestRun)
-{
-	size_t holes = 0, reached = 0;
-	for (int r = 0; r < known.rows; r++)
-	{
-		const uint8_t* k = known.ptr<uint8_t>(r);
-		int last = -1;
-		for (int c = 0; c < known.cols; c++)
-		{
-			if (!k[c]) continue;
-			reached++;
-			if (last >= 0 && c - last - 1 <= longestRun) holes += static_cast<size_t>(c - last - 1);
-			last = c;
-		}
-	}
-	return static_cast<double>(holes) / static_cast<double>(std::max<size_t>(reached, 1));
-}
-
 bool insideQuad(const std::array<Eigen::Vector2d, 4>& q, const Eigen::Vector2d& p)
 {
 	int sign = 0;
@@ -203,9 +183,7 @@ SensorView renderSensorView(const float* xs, const float* ys, const float* zs, c
 	// `fillSpacings`, the rest (sky, beyond range) stays grey.
 	const float peak = static_cast<float>(1 / (2 * kPi * sigma * sigma));
 	normalisedMean(bw, bi, 1e-9f, 0.05f * peak, img, known);
-	const double fillSigma = p.fillSpacings * view.angularSpacing / view.pixel;
-	view.holeShare = holeShareOf(known, 2 * fillSigma);
-	fillHoles(wsum, isum, 2 * sigma, fillSigma, img, known);
+	fillHoles(wsum, isum, 2 * sigma, p.fillSpacings * view.angularSpacing / view.pixel, img, known);
 	view.gray = contrastNormalised(img, std::move(vals), known);
 	return view;
 }

@@ -255,7 +255,7 @@ std::vector<std::vector<cv::Point2f>> withoutDuplicates(const std::vector<std::v
 }
 }  // namespace
 
-std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide, bool darkBlobs)
+std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide)
 {
 	// Without a smallest side: a candidate image is mostly tag, and outlines
 	// under 0.2 % of it (perimeters under 5 % of its edge) are specks.
@@ -278,7 +278,7 @@ std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSid
 	cv::aruco::detectMarkers(gray8, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), accepted, ids, detParams,
 							 quads);
 	quads.insert(quads.begin(), accepted.begin(), accepted.end());  // first: kept where both lists hold an outline
-	if (darkBlobs) addDarkBlobOutlines(gray8, quads, minArea);
+	addDarkBlobOutlines(gray8, quads, minArea);
 	quads = withoutDuplicates(quads);
 	std::stable_sort(quads.begin(), quads.end(),
 					 [](const auto& a, const auto& b) { return cv::contourArea(a) > cv::contourArea(b); });

@@ -63,12 +63,6 @@ struct SensorView
 	double pixel = 0;  // radians per pixel
 	double azimuthLeft = 0, elevationTop = 0;  // radians at pixel edge (0, 0)
 	double angularSpacing = 0;  // radians, sqrt(solid angle covered / points)
-	/** Pixels in holes between the points per pixel the points reach: runs
-	 *  of unreached pixels along a row with reached ones on both sides,
-	 *  no longer than the hole filling closes from both sides. A spinning
-	 *  scan's rows overlap (0.03-0.5 %), a Livox rosette leaves gaps
-	 *  between its petals (12-23 %), filled from blurrier versions. */
-	double holeShare = 0;
 	/** Each point's image coordinates (pixel edges on integers); a point
 	 *  repeated past the seam keeps its first position. */
 	std::vector<Eigen::Vector2f> pixelOf;

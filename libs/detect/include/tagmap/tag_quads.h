@@ -23,10 +23,8 @@ using Quad = std::array<Eigen::Vector2d, 4>;
  *  ring whole. Largest first, at most `maxQuads`. `minSide` (pixels): the
  *  smallest outline kept; 0 for a candidate image, which is mostly tag
  *  (outlines under 0.2 % of its area are specks). A whole scan's view
- *  holds tags far smaller than itself and gives its own. `darkBlobs`
- *  false: the contour finder's outlines only, for an image sharp enough
- *  that no border is blurred wider than its thresholds' windows. */
-std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide = 0, bool darkBlobs = true);
+ *  holds tags far smaller than itself and gives its own. */
+std::vector<Quad> findTagQuads(const cv::Mat& gray8, int maxQuads, double minSide = 0);
 
 /** `quads` in an image resized by `factor` (pixel edges scale exactly). */
 std::vector<Quad> scaledQuads(const std::vector<Quad>& quads, double factor);
