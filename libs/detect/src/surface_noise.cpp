@@ -10,9 +10,6 @@ namespace tagmap
 {
 namespace
 {
-// Plane-fit RMS of the points within `radius` of point i, or -1 when too
-// few. At most ~256 neighbours are used (a strided subset): enough for a
-// standard deviation, and bounded cost in dense scans.
 // The points within `radius` of point i, into `scratch`.
 void neighboursWithin(const float* xs, const float* ys, const float* zs, const VoxelGrid& grid, uint32_t i,
 					  double radius, std::vector<uint32_t>& scratch)
@@ -27,6 +24,9 @@ void neighboursWithin(const float* xs, const float* ys, const float* zs, const V
 	});
 }
 
+// Plane-fit RMS of the points within `radius` of point i, or -1 when too
+// few. At most ~256 neighbours are used (a strided subset): enough for a
+// standard deviation, and bounded cost in dense scans.
 double neighbourhoodRms(const float* xs, const float* ys, const float* zs, const VoxelGrid& grid, uint32_t i,
 						double radius, size_t minNeighbours, std::vector<uint32_t>& scratch)
 {

@@ -202,8 +202,6 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 	};
 	for (const auto& c : contours)
 	{
-		// Blurred outlines are ragged: simplify their convex hull, loosening
-		// the tolerance until four corners remain.
 		if (cv::contourArea(c) < minArea) continue;
 		// The hull once: the smallest rectangle around the hull is the
 		// contour's (minAreaRect would take the whole contour's hull again).
@@ -217,6 +215,8 @@ void addDarkBlobOutlines(const cv::Mat& gray8, std::vector<std::vector<cv::Point
 			quads.push_back(fitBorderSquare(smooth, box));
 			fitted.push_back(box);
 		}
+		// Blurred outlines are ragged: simplify their convex hull, loosening
+		// the tolerance until four corners remain.
 		for (double eps = 0.02; eps <= 0.12 && poly.size() != 4; eps += 0.01)
 			cv::approxPolyDP(hull, poly, eps * cv::arcLength(hull, true), true);
 		if (poly.size() != 4 || cv::contourArea(poly) < 0.8 * cv::contourArea(hull)) continue;
