@@ -10,10 +10,12 @@
 // Sensors (share/scenes/localize_site.yaml, the localization demo's site):
 //   spinning  a 64-beam x 512-column LiDAR at 10 Hz (~25 k points a scan)
 //   spinning128  the localization demo's 128-beam x 1024-column one (~130 k)
+//   spinning32, spinning16  32 and 16 beams x 1024 columns (~33 k, ~16 k): rows
+//             far apart, the sensor view's sparsest case
 //   livox     the Livox-like rosette, 0.1 s frames (~10 k points), each merged
 //             with the 2 before it by the odometry (observe --window 3: ~30 k)
 //
-//   build/bin/tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N]
+//   build/bin/tagmap-bench-observe [--sensor spinning|spinning128|spinning32|spinning16|livox|both] [--scans N]
 //                                  [--family LIST] [--seed S] [--window N] [--max-window M] [--misses]
 //                                  [--sensor-view | --map-path] [--config FILE]
 // `both` is spinning and livox. --config reads the pipeline's parameters
@@ -339,7 +341,7 @@ void benchSensor(const SensorRun& s, const Options& opt)
 [[noreturn]] void usage(const char* why)
 {
 	std::fprintf(stderr,
-				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|spinning128|livox|both] [--scans N] "
+				 "tagmap-bench-observe: %s\nUsage: tagmap-bench-observe [--sensor spinning|spinning128|spinning32|spinning16|livox|both] [--scans N] "
 				 "[--family LIST] [--seed S] [--window N] [--max-window M] [--misses] [--sensor-view | --map-path] [--config FILE]\n",
 				 why);
 	std::exit(2);
@@ -365,7 +367,7 @@ int main(int argc, char** argv)
 		}
 		if (i + 1 >= argc) usage(("missing value after " + a).c_str());
 		const std::string v = argv[++i];
-		if (a == "--sensor" && (v == "spinning" || v == "spinning128" || v == "livox" || v == "both")) opt.sensor = v;
+		if (a == "--sensor" && (v == "spinning" || v == "spinning128" || v == "spinning32" || v == "spinning16" || v == "livox" || v == "both")) opt.sensor = v;
 		else if (a == "--scans") opt.scans = std::strtoul(v.c_str(), nullptr, 10);
 		else if (a == "--family") opt.families = v;
 		else if (a == "--window" && std::strtoul(v.c_str(), nullptr, 10) > 0)
@@ -382,10 +384,13 @@ int main(int argc, char** argv)
 		const std::map<std::string, SensorRun> runs = {
 			{"spinning", {"spinning 64 x 512, 10 Hz", "robot", {{"robot_beams", 64}, {"robot_columns", 512}}, 1}},
 			{"spinning128", {"spinning 128 x 1024, 10 Hz", "robot", {}, 1}},
+			// Sparse rows: each beam's row lies several view pixels from the next (the sensor view's hardest case)
+			{"spinning32", {"spinning 32 x 1024, 10 Hz", "robot", {{"robot_beams", 32}, {"robot_columns", 1024}}, 1}},
+			{"spinning16", {"spinning 16 x 1024, 10 Hz", "robot", {{"robot_beams", 16}, {"robot_columns", 1024}}, 1}},
 			{"livox", {"livox 0.1 s frames", "robot_livox", {}, 3}},
 		};
-		for (const std::string name : {"spinning", "spinning128", "livox"})
-			if (opt.sensor == name || (opt.sensor == "both" && name != "spinning128"))
+		for (const std::string name : {"spinning", "spinning128", "spinning32", "spinning16", "livox"})
+			if (opt.sensor == name || (opt.sensor == "both" && (name == "spinning" || name == "livox")))
 				benchSensor(runs.at(name), opt);
 	}
 	catch (const std::exception& e)
