@@ -1,6 +1,7 @@
 #include "tagmap/soft_decoder.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <mutex>
 
@@ -9,6 +10,18 @@
 
 namespace tagmap
 {
+namespace
+{
+// Set bits of each byte value. __builtin_popcount is a libgcc call on the
+// x86-64 baseline (no POPCNT instruction), and the correlation below takes
+// one per byte of every code in every orientation.
+constexpr std::array<uint8_t, 256> kBitsSet = [] {
+	std::array<uint8_t, 256> t{};
+	for (unsigned v = 1; v < 256; v++) t[v] = static_cast<uint8_t>(t[v / 2] + (v & 1));
+	return t;
+}();
+}  // namespace
+
 // Every code of a family over the cells that tell codes apart, packed.
 struct SoftTagDecoder::FamilyCodes
 {
@@ -165,7 +178,7 @@ SoftTagDecoder::BestCodes SoftTagDecoder::correlate(const FamilyCodes& fc, const
 			for (size_t byte = 0; byte < nb; byte++)
 			{
 				dot += subsetSum[byte * 256 + white[byte]];
-				w += __builtin_popcount(static_cast<unsigned>(white[byte] & measured[byte]));
+				w += kBitsSet[white[byte] & measured[byte]];
 			}
 			const double spread = w - static_cast<double>(w) * w / n;
 			b.offer(spread > 0 ? dot / std::sqrt(spread * ss) : 0.0, id, order);
