@@ -26,6 +26,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -76,9 +77,13 @@ struct SensorRun
 // vector on the left, in the sensor frame). About 0.9 at the median when
 // the covariance is honest, far above 1 when it is overconfident; what a
 // localizer weighs the tag by.
+// Also the position error along each axis of the true tag's frame (x
+// right, y up, z its normal) over that axis' reported sigma: a sensor whose
+// rows lie far apart shows it along one in-plane axis only.
 struct NormalizedError
 {
 	double position = NAN, rotation = NAN;
+	Eigen::Vector3d alongTagAxes = Eigen::Vector3d::Constant(NAN);
 };
 NormalizedError normalizedError(const TagDetection& found, const TagDetection& truth)
 {
@@ -87,7 +92,13 @@ NormalizedError normalizedError(const TagDetection& found, const TagDetection& t
 	const Eigen::Vector3d dr = aa.angle() * aa.axis();
 	const Eigen::Matrix3d cp = found.covariance.topLeftCorner<3, 3>(), cr = found.covariance.bottomRightCorner<3, 3>();
 	NormalizedError n;
-	if (cp.determinant() > 0) n.position = std::sqrt(dp.dot(cp.ldlt().solve(dp)) / 3);
+	if (cp.determinant() > 0)
+	{
+		n.position = std::sqrt(dp.dot(cp.ldlt().solve(dp)) / 3);
+		const Eigen::Matrix3d R = truth.pose.linear();
+		const Eigen::Matrix3d inTag = R.transpose() * cp * R;
+		n.alongTagAxes = (R.transpose() * dp).cwiseAbs().cwiseQuotient(inTag.diagonal().cwiseSqrt());
+	}
 	if (cr.determinant() > 0) n.rotation = std::sqrt(dr.dot(cr.ldlt().solve(dr)) / 3);
 	return n;
 }
@@ -100,6 +111,7 @@ double quantile(std::vector<double> v, double q) { return v.empty() ? NAN : quan
 struct SightingErrors
 {
 	std::vector<double> position, rotation, positionNorm, rotationNorm;
+	std::array<std::vector<double>, 3> axisNorm;  // tag x, y, normal
 
 	void add(const TagError& e, const TagDetection& seen, const TagDetection& truth)
 	{
@@ -110,6 +122,8 @@ struct SightingErrors
 		const NormalizedError n = normalizedError(seen, truth);
 		if (std::isfinite(n.position)) positionNorm.push_back(n.position);
 		if (std::isfinite(n.rotation)) rotationNorm.push_back(n.rotation);
+		for (int a = 0; a < 3; a++)
+			if (std::isfinite(n.alongTagAxes[a])) axisNorm[a].push_back(n.alongTagAxes[a]);
 	}
 	void print(const std::string& label) const
 	{
@@ -122,6 +136,11 @@ struct SightingErrors
 						"median %.2f, p90 %.2f; rotation median %.2f, p90 %.2f\n",
 						quantile(positionNorm, 0.5), quantile(positionNorm, 0.9), quantile(rotationNorm, 0.5),
 						quantile(rotationNorm, 0.9));
+		if (!axisNorm[0].empty())
+			std::printf("  position |error| / sigma along the tag's x, y, normal (~0.67 at the median when honest): "
+						"median %.2f, %.2f, %.2f; p90 %.2f, %.2f, %.2f\n",
+						quantile(axisNorm[0], 0.5), quantile(axisNorm[1], 0.5), quantile(axisNorm[2], 0.5),
+						quantile(axisNorm[0], 0.9), quantile(axisNorm[1], 0.9), quantile(axisNorm[2], 0.9));
 	}
 };
 
