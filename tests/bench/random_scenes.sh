@@ -103,6 +103,14 @@ draw_scene() {
 			else if (kind == "bordered_square") cell = m / (7 + int(4 * across) + 0.01)
 			else if (kind == "window_grid") cell = m / (2 + int(3 * across) + 0.01)
 			else cell = w / (4 + int(6 * across))
+			# The scene holds the size and cell rounded (3 and 5 decimals): a
+			# cell rounded up on a side rounded down can leave fewer modules
+			# than the simulator accepts (seed 1007: 19 of 0.01795 m on
+			# 0.341 m). Only then is the cell recomputed from the rounded side
+			# and rounded down, so every other scene stays as it was.
+			least = kind == "qr_like" ? 19 : kind == "bordered_square" ? 7 : kind == "window_grid" ? 2 : 0
+			wr = sprintf("%.3f", w) + 0; hr = sprintf("%.3f", h) + 0; mr = (hr < wr ? hr : wr)
+			if (least && mr / (sprintf("%.5f", cell) + 0) * (1 + 1e-12) < least) cell = int(mr / (least + 0.01) * 1e5) / 1e5
 			if (!t) print "distractors:"
 			printf "  - {name: d%d, type: %s, position: [%.4f, %.3f, %.3f], normal: [-1, 0, 0], size: [%.3f, %.3f], cell: %.5f, seed: %d}\n",
 				t, kind, d - 0.0001, sy[k], sz[k], w, h, cell, seed * 10 + t
