@@ -598,17 +598,25 @@ struct ScannedPattern
 	std::vector<float> x, y, z, i;
 	PlaneImage plane;
 };
-// Points every 4 mm over `cells` x `cells` cells of `cell` metres centred
-// on the origin, each the colour `white(row, col)` (0/1) plus noise.
-ScannedPattern scanPattern(int cells, double cell, const std::function<bool(int, int)>& white, double noise)
+// Scan rows `rowGap` apart, the first `firstRow` above the grid's bottom
+// edge, points `along` apart on each: over `cells` x `cells` cells of
+// `cell` metres centred on the origin.
+struct RowLayout
+{
+	double rowGap = 0.004, firstRow = 0.002, along = 0.004;
+	unsigned noiseSeed = 7;
+};
+// Each point the colour `white(row, col)` (0/1) plus noise.
+ScannedPattern scanPattern(int cells, double cell, const std::function<bool(int, int)>& white, double noise,
+						   const RowLayout& rows = {})
 {
 	ScannedPattern s;
-	s.plane.localSpacing = 0.004;
-	std::mt19937 rng(7);
+	s.plane.localSpacing = std::min(rows.rowGap, rows.along);
+	std::mt19937 rng(rows.noiseSeed);
 	std::normal_distribution<float> n(0, static_cast<float>(noise));
 	const double half = 0.5 * cells * cell;
-	for (double yy = -half + 0.002; yy < half; yy += 0.004)
-		for (double xx = -half + 0.002; xx < half; xx += 0.004)
+	for (double yy = -half + rows.firstRow; yy < half; yy += rows.rowGap)
+		for (double xx = -half + 0.5 * rows.along; xx < half; xx += rows.along)
 		{
 			const int col = static_cast<int>((xx + half) / cell), row = static_cast<int>((half - yy) / cell);
 			s.x.push_back(static_cast<float>(xx));
@@ -619,14 +627,21 @@ ScannedPattern scanPattern(int cells, double cell, const std::function<bool(int,
 		}
 	return s;
 }
-}  // namespace
 
-TEST(PatternRefinement, NoisyIntensitiesOfADenseTagPassARandomPatternDoesNot)
+// tag36h11:5 of `size` metres at the origin, facing +z: a read to refine.
+TagDetection readTag(double size)
 {
 	TagDetection t;
 	t.family = "tag36h11";
 	t.id = 5;
-	t.size = 0.4;
+	t.size = size;
+	return t;
+}
+}  // namespace
+
+TEST(PatternRefinement, NoisyIntensitiesOfADenseTagPassARandomPatternDoesNot)
+{
+	const TagDetection t = readTag(0.4);
 	const TagBitmap bm = renderTagBitmap(t.family, t.id);
 	const double cell = t.size / bm.borderCells;
 	PatternRefinementParams p;
@@ -644,6 +659,45 @@ TEST(PatternRefinement, NoisyIntensitiesOfADenseTagPassARandomPatternDoesNot)
 	TagDetection misread = t;
 	EXPECT_FALSE(refineWithPattern(misread, poster.plane, poster.x.data(), poster.y.data(), poster.z.data(),
 								   poster.i.data(), p));
+}
+
+// A scan whose rows lie a cell apart, all crossing the cells at the same
+// height (32 beams at 3 m from a tag seen square on): the pattern can slide
+// most of a cell up or down with no point changing colour, so the fit's
+// height is known only to that range, whatever the cost's slope says. The
+// same tag scanned at every height is known to millimetres.
+TEST(PatternRefinement, RowsACellApartLeaveTheHeightUncertain)
+{
+	const TagDetection t = readTag(0.6);
+	const TagBitmap bm = renderTagBitmap(t.family, t.id);
+	const double cell = t.size / bm.borderCells;
+	// Points 2 cm apart along each row (a 1024-column spinner's at 3 m),
+	// the intensity noise a tenth of the print's contrast.
+	auto scanRows = [&](double rowGap, double firstRowCells, unsigned seed) {
+		RowLayout rows;
+		rows.rowGap = rowGap;
+		rows.firstRow = firstRowCells * cell;
+		rows.along = 0.02;
+		rows.noiseSeed = seed;
+		return scanPattern(bm.cells, cell, [&](int r, int c) { return bm.at(r, c) != 0; }, 0.1, rows);
+	};
+	PatternRefinementParams p;
+	p.estimateSize = false;
+	auto heightSigma = [&](const ScannedPattern& s) {
+		TagDetection read = t;
+		EXPECT_TRUE(refineWithPattern(read, s.plane, s.x.data(), s.y.data(), s.z.data(), s.i.data(), p));
+		return std::sqrt(read.covariance(1, 1));  // the tag's y is the map's here
+	};
+	// The cost's slope over the free range follows the noise: from one
+	// noise draw to the next it says anything from millimetres to metres.
+	for (unsigned seed = 1; seed <= 6; seed++)
+	{
+		const double sparse = heightSigma(scanRows(cell, 0.8, seed)), dense = heightSigma(scanRows(0.005, 0.01, seed));
+		std::printf("noise draw %u: height sigma with rows a cell apart %.1f mm, every 5 mm %.2f mm (cell %.0f mm)\n",
+					seed, 1000 * sparse, 1000 * dense, 1000 * cell);
+		EXPECT_GT(sparse, 0.2 * cell);  // most of a cell, as a uniform range: ~0.26 cell
+		EXPECT_LT(dense, 0.05 * cell);
+	}
 }
 
 // Decoded poses a few tenths of a degree and millimetres apart, on a wall

@@ -162,6 +162,44 @@ struct Evaluation
 	Eigen::VectorXd residuals;
 };
 
+// How far the pattern can slide along one axis of the tag (0: x, 1: y),
+// in cells, with no point's predicted colour changing: the shifts the
+// points cannot tell apart. A scan's rows about a cell apart, crossing the
+// cells all at the same height, leave most of a cell (32 beams at 3 m: 0.9);
+// points at every height (a merged map, rows slanting across a tag seen
+// obliquely) leave hundredths.
+double freeShift(const std::vector<Eigen::Vector2d>& inCells, const TagBitmap& bm, int axis)
+{
+	constexpr double kCap = 2;  // cells: a pattern this free was not read by any decoder
+	const double toCorner = bm.borderStart + bm.borderCells / 2.0;
+	auto white = [&](Eigen::Vector2d at) {
+		const int col = std::clamp(static_cast<int>(std::floor(at.x() + toCorner)), 0, bm.cells - 1);
+		const int row = std::clamp(static_cast<int>(std::floor(-at.y() + toCorner)), 0, bm.cells - 1);
+		return bm.at(row, col) != 0;
+	};
+	// The pattern moved by +d along the axis moves each point by -d in the
+	// pattern's coordinates: the nearest colour change below a point bounds
+	// the slide one way, the nearest above it the other.
+	double plus = kCap, minus = kCap;
+	for (const Eigen::Vector2d& p : inCells)
+	{
+		const bool own = white(p);
+		const double v = p[axis];
+		Eigen::Vector2d beyond = p;
+		for (double edge = std::floor(v); v - edge < plus; edge -= 1)
+		{
+			beyond[axis] = edge - 0.5;
+			if (white(beyond) != own) plus = v - edge;
+		}
+		for (double edge = std::floor(v) + 1; edge - v < minus; edge += 1)
+		{
+			beyond[axis] = edge + 0.5;
+			if (white(beyond) != own) minus = edge - v;
+		}
+	}
+	return std::min(plus + minus, kCap);
+}
+
 // refineWithPattern() with the bitmap `bm` as the pattern.
 bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, const float* xs, const float* ys,
 			   const float* zs, const float* is, const PatternRefinementParams& p)
@@ -301,7 +339,20 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 			}
 			Eigen::Matrix3d meat = Eigen::Matrix3d::Zero();
 			for (const auto& [key, g] : perCell) meat += g * g.transpose();
-			const Eigen::Matrix3d cov = Hinv * meat * Hinv;
+			Eigen::Matrix3d cov = Hinv * meat * Hinv;
+			// The sandwich is the cost's slope at the fit. Where the points
+			// leave the pattern free to slide (scan rows about a cell apart,
+			// crossing every cell at the same height), the fit lands anywhere
+			// in that range, up to half of it off, while the slope there says
+			// millimetres: the range counts as a uniform uncertainty.
+			const RefinedFrame fitted(s, cell0);
+			std::vector<Eigen::Vector2d> inCells(q.size());
+			for (size_t k = 0; k < q.size(); k++) inCells[k] = fitted.inCells(q[k]);
+			for (int a = 0; a < 2; a++)
+			{
+				const double range = freeShift(inCells, bm, a) * fitted.cell;
+				cov(1 + a, 1 + a) = std::max(cov(1 + a, 1 + a), range * range / 12);
+			}
 			if (cov.allFinite())
 			{
 				const Eigen::Matrix3d R = T0.linear();
