@@ -14,6 +14,7 @@
 #include "tagmap/code_in_points.h"
 #include "tagmap/decode_schedule.h"
 #include "tagmap/front_side.h"
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "tagmap/intensity_gradient.h"
@@ -553,6 +554,37 @@ TEST(PatternRefinement, SquareAtTheEdgeOfItsPointsIsRejectedCleanly)
 // A read cut off by its image is decoded again on the box its whole grid
 // fits in: centred on the read, as wide as the family's grid (with its
 // cells outside the border and the quiet zone), on the read's plane.
+// A stage that re-estimates one axis' variance must not keep that axis'
+// covariance with the others from the estimate it replaces: a normal's
+// variance shrunk by a plane fit beside an old in-plane/normal covariance
+// made C indefinite (negative variances in the JSON).
+TEST(TagPose, ReplacingAnAxisVarianceKeepsTheCovarianceValid)
+{
+	const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+	Eigen::Matrix3d inTag;
+	inTag << 1e-4, 0, 9e-5, 0, 1e-4, 0, 9e-5, 0, 1e-4;  // x and the normal correlated 0.9
+	Eigen::Matrix<double, 6, 6> C = Eigen::Matrix<double, 6, 6>::Zero();
+	C.topLeftCorner<3, 3>() = R * inTag * R.transpose();
+	C.bottomRightCorner<3, 3>() = C.topLeftCorner<3, 3>();
+	setTagFrameCovariance(C, R, false, {2}, Eigen::Matrix<double, 1, 1>(1e-8));
+	Eigen::Matrix2d inPlane;
+	inPlane << 4e-6, 1e-6, 1e-6, 2e-6;
+	setTagFrameCovariance(C, R, true, {1, 0}, inPlane);
+
+	const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(C);
+	EXPECT_GE(eig.eigenvalues().minCoeff(), -1e-18);
+	const Eigen::Matrix3d position = R.transpose() * C.topLeftCorner<3, 3>() * R;
+	const Eigen::Matrix3d rotation = R.transpose() * C.bottomRightCorner<3, 3>() * R;
+	EXPECT_NEAR(position(2, 2), 1e-8, 1e-15);
+	EXPECT_NEAR(position(0, 0), 1e-4, 1e-15);  // the other axes as they were
+	EXPECT_NEAR(position(0, 2), 0, 1e-15);
+	EXPECT_NEAR(rotation(1, 1), 4e-6, 1e-15);  // the block over the axes in the order given
+	EXPECT_NEAR(rotation(0, 0), 2e-6, 1e-15);
+	EXPECT_NEAR(rotation(0, 1), 1e-6, 1e-15);
+	EXPECT_NEAR(rotation(0, 2), 0, 1e-15);
+	EXPECT_NEAR(rotation(2, 2), 1e-4, 1e-15);
+}
+
 TEST(TagPose, WholeGridBoxHoldsTheFamilysWholeGrid)
 {
 	PlaneImage plane;

@@ -355,18 +355,10 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 			}
 			if (cov.allFinite())
 			{
-				const Eigen::Matrix3d R = T0.linear();
-				Eigen::Matrix<double, 6, 6> C = t.covariance;
-				// Tag-frame in-plane translation and rotation about z, to map frame.
-				Eigen::Matrix3d Ct = R.transpose() * C.topLeftCorner<3, 3>() * R;
-				Ct(0, 0) = cov(1, 1);
-				Ct(1, 1) = cov(2, 2);
-				Ct(0, 1) = Ct(1, 0) = cov(1, 2);
-				C.topLeftCorner<3, 3>() = R * Ct * R.transpose();
-				Eigen::Matrix3d Cr = R.transpose() * C.bottomRightCorner<3, 3>() * R;
-				Cr(2, 2) = cov(0, 0);
-				C.bottomRightCorner<3, 3>() = R * Cr * R.transpose();
-				t.covariance = C;
+				// Tag-frame in-plane translation and rotation about the normal (the
+				// fit's axes are the initial frame's).
+				setTagFrameCovariance(t.covariance, T0.linear(), false, {0, 1}, cov.bottomRightCorner<2, 2>());
+				setTagFrameCovariance(t.covariance, T0.linear(), true, {2}, cov.topLeftCorner<1, 1>());
 			}
 		}
 	}

@@ -148,15 +148,11 @@ double fitSupportPlane(TagDetection& t, const std::vector<uint32_t>& around, con
 
 	// Slope (dz/dx, dz/dy) standard errors are the tilts about y and x.
 	const Eigen::Matrix2d slopeCov = inflation * inflation * rms * rms * S.inverse();
-	const Eigen::Matrix3d Rt = t.pose.linear();
-	Eigen::Matrix3d Ct = Rt.transpose() * t.covariance.topLeftCorner<3, 3>() * Rt;
-	Ct(2, 2) = rms * rms / static_cast<double>(tag.pts.size());
-	t.covariance.topLeftCorner<3, 3>() = Rt * Ct * Rt.transpose();
-	Eigen::Matrix3d Cr = Rt.transpose() * t.covariance.bottomRightCorner<3, 3>() * Rt;
-	Cr(0, 0) = slopeCov(1, 1);
-	Cr(1, 1) = slopeCov(0, 0);
-	Cr(0, 1) = Cr(1, 0) = -slopeCov(0, 1);
-	t.covariance.bottomRightCorner<3, 3>() = Rt * Cr * Rt.transpose();
+	setTagFrameCovariance(t.covariance, t.pose.linear(), false, {2},
+						  Eigen::Matrix<double, 1, 1>(rms * rms / static_cast<double>(tag.pts.size())));
+	Eigen::Matrix2d tilts;
+	tilts << slopeCov(1, 1), -slopeCov(0, 1), -slopeCov(0, 1), slopeCov(0, 0);
+	setTagFrameCovariance(t.covariance, t.pose.linear(), true, {0, 1}, tilts);
 	return reached;
 }
 

@@ -1,5 +1,7 @@
 #include "tagmap/tag_pose.h"
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
@@ -15,6 +17,20 @@ Eigen::Matrix<double, 6, 6> tagFrameCovarianceToMap(const Eigen::Matrix3d& R, co
 	C.topLeftCorner<3, 3>() = R * sigmaT.cwiseAbs2().asDiagonal() * R.transpose();
 	C.bottomRightCorner<3, 3>() = R * sigmaR.cwiseAbs2().asDiagonal() * R.transpose();
 	return C;
+}
+
+void setTagFrameCovariance(Eigen::Matrix<double, 6, 6>& C, const Eigen::Matrix3d& R, bool rotation,
+						   const std::vector<int>& axes, const Eigen::MatrixXd& block)
+{
+	const int at = rotation ? 3 : 0;
+	Eigen::Matrix3d inTag = R.transpose() * C.block<3, 3>(at, at) * R;
+	for (int a : axes)
+		for (int other = 0; other < 3; other++)
+			if (std::find(axes.begin(), axes.end(), other) == axes.end()) inTag(a, other) = inTag(other, a) = 0;
+	for (size_t i = 0; i < axes.size(); i++)
+		for (size_t j = 0; j < axes.size(); j++)
+			inTag(axes[i], axes[j]) = block(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+	C.block<3, 3>(at, at) = R * inTag * R.transpose();
 }
 
 double measuredTagSize(const Quad& corners, const PlaneImage& plane)
@@ -118,13 +134,9 @@ void refitTagPlane(TagDetection& t, const PlaneImage& plane, const float* xs, co
 	t.pointsUsed = static_cast<int>(on.size());
 	const double N = static_cast<double>(on.size());
 	const double sTilt = rms / (0.5 * t.size * std::sqrt(N / 3.0));
-	const Eigen::Matrix3d Rt = t.pose.linear();
-	Eigen::Matrix3d Ct = Rt.transpose() * t.covariance.topLeftCorner<3, 3>() * Rt;
-	Ct(2, 2) = rms * rms / N;
-	t.covariance.topLeftCorner<3, 3>() = Rt * Ct * Rt.transpose();
-	Eigen::Matrix3d Cr = Rt.transpose() * t.covariance.bottomRightCorner<3, 3>() * Rt;
-	Cr(0, 0) = Cr(1, 1) = sTilt * sTilt;
-	t.covariance.bottomRightCorner<3, 3>() = Rt * Cr * Rt.transpose();
+	setTagFrameCovariance(t.covariance, t.pose.linear(), false, {2}, Eigen::Matrix<double, 1, 1>(rms * rms / N));
+	setTagFrameCovariance(t.covariance, t.pose.linear(), true, {0, 1},
+						  Eigen::Matrix2d(Eigen::Vector2d::Constant(sTilt * sTilt).asDiagonal()));
 }
 
 }  // namespace tagmap

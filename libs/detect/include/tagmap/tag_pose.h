@@ -3,6 +3,8 @@
 // (Kabsch) against the tag model, with a covariance.
 #pragma once
 
+#include <vector>
+
 #include "tagmap/intermediate_plane.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_detection.h"
@@ -38,5 +40,15 @@ void refitTagPlane(TagDetection& t, const PlaneImage& plane, const float* xs, co
  *  out-of-plane standard deviations expressed in the tag frame. */
 Eigen::Matrix<double, 6, 6> tagFrameCovarianceToMap(const Eigen::Matrix3d& R_G_tag, const Eigen::Vector3d& sigmaT,
 													 const Eigen::Vector3d& sigmaR);
+
+/** Sets the covariance of some of the tag frame's axes (0: x, 1: y, 2: the
+ *  normal) in the position (`rotation` false) or rotation block of `C` (map
+ *  frame; R_G_tag the tag's orientation) to `block`, over `axes` in the
+ *  order given. Their covariance with the other axes is dropped: it came
+ *  with the estimate being replaced, and kept beside a new one it can leave
+ *  C indefinite (negative variances in the JSON of 2 of 24 randomized maps
+ *  before). */
+void setTagFrameCovariance(Eigen::Matrix<double, 6, 6>& C, const Eigen::Matrix3d& R_G_tag, bool rotation,
+						   const std::vector<int>& axes, const Eigen::MatrixXd& block);
 
 }  // namespace tagmap
