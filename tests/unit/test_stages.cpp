@@ -551,9 +551,6 @@ TEST(PatternRefinement, SquareAtTheEdgeOfItsPointsIsRejectedCleanly)
 	EXPECT_LT(t.patternFit, p.minPatternFit);
 }
 
-// A read cut off by its image is decoded again on the box its whole grid
-// fits in: centred on the read, as wide as the family's grid (with its
-// cells outside the border and the quiet zone), on the read's plane.
 // A stage that re-estimates one axis' variance must not keep that axis'
 // covariance with the others from the estimate it replaces: a normal's
 // variance shrunk by a plane fit beside an old in-plane/normal covariance
@@ -585,6 +582,9 @@ TEST(TagPose, ReplacingAnAxisVarianceKeepsTheCovarianceValid)
 	EXPECT_NEAR(rotation(2, 2), 1e-4, 1e-15);
 }
 
+// A read cut off by its image is decoded again on the box its whole grid
+// fits in: centred on the read, as wide as the family's grid (with its
+// cells outside the border and the quiet zone), on the read's plane.
 TEST(TagPose, WholeGridBoxHoldsTheFamilysWholeGrid)
 {
 	PlaneImage plane;

@@ -1,8 +1,7 @@
 #include "tagmap/tag_pose.h"
 
-#include <algorithm>
-
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "tagmap/point_stats.h"
