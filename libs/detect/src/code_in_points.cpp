@@ -12,9 +12,7 @@ std::vector<float> cellMeansFromPoints(const TagDetection& t, const PlaneImage& 
 {
 	const TagBitmap bm = renderTagBitmap(t.family, t.id);
 	const double cell = t.size / bm.borderCells;
-	// Cells from the grid's top-left corner to the tag's centre; grid rows
-	// run down, the tag frame's y up (as in the pattern fit's model).
-	const double toCentre = bm.borderStart + bm.borderCells / 2.0;
+	const double toCentre = bm.centreInCells();
 	const Eigen::Isometry3d toTag = t.pose.inverse();
 	std::vector<double> sum(bm.pixels.size(), 0);
 	std::vector<int> count(bm.pixels.size(), 0);

@@ -62,7 +62,7 @@ struct PatternModel
 	{
 		cells = bm.cells;
 		borderCells = bm.borderCells;
-		cellsToCentre = bm.borderStart + bm.borderCells / 2.0;
+		cellsToCentre = bm.centreInCells();
 		cv::Mat small(bm.cells, bm.cells, CV_8U, const_cast<uint8_t*>(bm.pixels.data()));
 		cv::Mat big;
 		cv::resize(small, big, cv::Size(), kPxPerCell, kPxPerCell, cv::INTER_NEAREST);
@@ -171,10 +171,10 @@ struct Evaluation
 double freeShift(const std::vector<Eigen::Vector2d>& inCells, const TagBitmap& bm, int axis)
 {
 	constexpr double kCap = 2;  // cells: a pattern this free was not read by any decoder
-	const double toCorner = bm.borderStart + bm.borderCells / 2.0;
+	const double toCentre = bm.centreInCells();
 	auto white = [&](Eigen::Vector2d at) {
-		const int col = std::clamp(static_cast<int>(std::floor(at.x() + toCorner)), 0, bm.cells - 1);
-		const int row = std::clamp(static_cast<int>(std::floor(-at.y() + toCorner)), 0, bm.cells - 1);
+		const int col = std::clamp(static_cast<int>(std::floor(at.x() + toCentre)), 0, bm.cells - 1);
+		const int row = std::clamp(static_cast<int>(std::floor(-at.y() + toCentre)), 0, bm.cells - 1);
 		return bm.at(row, col) != 0;
 	};
 	// The pattern moved by +d along the axis moves each point by -d in the

@@ -31,7 +31,7 @@ namespace
 std::pair<double, double> drawnSpan(const TagDetection& tag, const TagBitmap& bmp)
 {
 	const double cell = tag.size / bmp.borderCells;
-	const double lo = -(bmp.borderStart + 0.5 * bmp.borderCells) * cell;
+	const double lo = -bmp.centreInCells() * cell;
 	return {lo, lo + bmp.cells * cell};
 }
 }  // namespace

@@ -37,7 +37,7 @@ SceneObject makeTagPaper(const TagSpec& spec, const Eigen::Isometry3d& printedPo
 	const TagBitmap bm = renderTagBitmap(spec.family, spec.id);
 	const double cell = spec.size / bm.borderCells;
 	// Grid placed so the border square is centred on the tag origin.
-	const double centre = (bm.borderStart + 0.5 * bm.borderCells) * cell;
+	const double centre = bm.centreInCells() * cell;
 	Rect r;
 	r.pose = printedPose;
 	r.printedFrontOnly = true;

@@ -85,6 +85,10 @@ struct TagBitmap
 	std::vector<uint8_t> pixels;  // row-major, cells*cells
 
 	uint8_t at(int row, int col) const { return pixels[row * cells + col]; }
+	/** Cells from the grid's top-left corner to the tag's centre, along both
+	 *  axes: tag-frame (x, y) in cells is grid column x + this, row -y + this
+	 *  (grid rows run down, the tag frame's y up). */
+	double centreInCells() const { return borderStart + borderCells / 2.0; }
 };
 
 /** Throws std::invalid_argument on an unknown family or out-of-range id. */
