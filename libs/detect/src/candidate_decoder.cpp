@@ -173,7 +173,13 @@ class CandidateDecoder
 			if (!out.report.onTagOf) out.report.onTagOf = onTagOf;
 			return out;
 		}
+		// ArUco and the soft decoder read the largest outlines as they are;
+		// of those, the ones that fail the test (a window grid's panes: one
+		// colour inside) hold no read that could pass (read_evidence.h,
+		// quadCanShowACode) and are not read.
 		quads.resize(std::min(quads.size(), static_cast<size_t>(std::max(0, p_.decoder.maxQuads))));  // largest first
+		quads.erase(std::remove_if(quads.begin(), quads.end(), [&](const Quad& q) { return !mayShowATag(q, plane); }),
+					quads.end());
 		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
 		{
 			const std::vector<Quad> variantQuads = scaledQuads(quads, 1.0 / variant.scale);
