@@ -123,8 +123,10 @@ class Observer
 			viewpoints.emplace_back(inThisFrame.x(), inThisFrame.y(), inThisFrame.z());
 		}
 		Detections found = pipeline_.detect(merged, viewpoints);
-		for (TagDetection& t : found.tags)
-			addMisregistration(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
+		// A single scan has no other to disagree with (the fits would add 0).
+		if (scanStarts.size() > 1)
+			for (TagDetection& t : found.tags)
+				addMisregistration(t, windowMisregistration(t, merged, scanStarts, found.surfaceNoise));
 		return {std::move(found), merged.size(), scanStarts.size()};
 	}
 
