@@ -130,14 +130,18 @@ PlaneImage renderIntermediatePlane(const float* xs, const float* ys, const float
 	// mixed-pixel points in between, fall out after the first rounds.
 	Eigen::Vector3d c = box.center, n = box.axes.col(2);
 	double tol = std::max(0.5 * box.extent.z(), 2 * spacing) + 2 * spacing;
-	std::vector<uint32_t> in;
+	std::vector<uint32_t> in, before;
 	PlaneFit fit{c, n, tol};
 	for (int iter = 0; iter < 5; iter++)
 	{
+		in.swap(before);
 		in.clear();
 		for (uint32_t i : points)
 			if (std::abs((Eigen::Vector3d(xs[i], ys[i], zs[i]) - c).dot(n)) <= tol) in.push_back(i);
 		if (in.size() < 16) return out;
+		// The same points as the round before: the same fit, and every
+		// round after would select them again.
+		if (iter > 0 && in == before) break;
 		fit = fitPlane(xs, ys, zs, in);
 		c = fit.centroid;
 		// Keep the side the box chose: which side is "front" is decided by
