@@ -166,20 +166,25 @@ class CandidateDecoder
 		// libapriltag, the costliest decoder, would search it three times.
 		// Every outline is looked at, not only the largest the decoders get:
 		// libapriltag finds its own, and a small tag in a busy image may be
-		// outline number 9.
-		if (std::none_of(quads.begin(), quads.end(), [&](const Quad& q) { return mayShowATag(q, plane); }))
+		// outline number 9. ArUco and the soft decoder read the largest
+		// outlines as they are, and of those only the ones that pass: a read
+		// on the others (a window grid's panes) could not (quadCanShowACode).
+		const size_t largest = std::min(quads.size(), static_cast<size_t>(std::max(0, p_.decoder.maxQuads)));
+		std::vector<Quad> mayShow;  // of the largest
+		bool anyMayShow = false;
+		for (size_t k = 0; k < quads.size() && !(anyMayShow && k >= largest); k++)
+			if (mayShowATag(quads[k], plane))
+			{
+				anyMayShow = true;
+				if (k < largest) mayShow.push_back(quads[k]);
+			}
+		if (!anyMayShow)
 		{
 			out.report.verdict = onTagOf ? Verdict::OnDecodedTag : Verdict::NoCodeShown;
 			if (!out.report.onTagOf) out.report.onTagOf = onTagOf;
 			return out;
 		}
-		// ArUco and the soft decoder read the largest outlines as they are;
-		// of those, the ones that fail the test (a window grid's panes: one
-		// colour inside) hold no read that could pass (read_evidence.h,
-		// quadCanShowACode) and are not read.
-		quads.resize(std::min(quads.size(), static_cast<size_t>(std::max(0, p_.decoder.maxQuads))));  // largest first
-		quads.erase(std::remove_if(quads.begin(), quads.end(), [&](const Quad& q) { return !mayShowATag(q, plane); }),
-					quads.end());
+		quads = std::move(mayShow);
 		for (const ImageVariant& variant : makeImageVariants(plane.gray, p_.imageVariants))
 		{
 			const std::vector<Quad> variantQuads = scaledQuads(quads, 1.0 / variant.scale);
