@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -170,15 +171,11 @@ class CandidateDecoder
 		// outlines as they are, and of those only the ones that pass: a read
 		// on the others (a window grid's panes) could not (quadCanShowACode).
 		const size_t largest = std::min(quads.size(), static_cast<size_t>(std::max(0, p_.decoder.maxQuads)));
+		const auto mayShowIt = [&](const Quad& q) { return mayShowATag(q, plane); };
 		std::vector<Quad> mayShow;  // of the largest
-		bool anyMayShow = false;
-		for (size_t k = 0; k < quads.size() && !(anyMayShow && k >= largest); k++)
-			if (mayShowATag(quads[k], plane))
-			{
-				anyMayShow = true;
-				if (k < largest) mayShow.push_back(quads[k]);
-			}
-		if (!anyMayShow)
+		std::copy_if(quads.begin(), quads.begin() + static_cast<std::ptrdiff_t>(largest), std::back_inserter(mayShow),
+					 mayShowIt);
+		if (mayShow.empty() && std::none_of(quads.begin() + static_cast<std::ptrdiff_t>(largest), quads.end(), mayShowIt))
 		{
 			out.report.verdict = onTagOf ? Verdict::OnDecodedTag : Verdict::NoCodeShown;
 			if (!out.report.onTagOf) out.report.onTagOf = onTagOf;
