@@ -5,6 +5,9 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
 #include <opencv2/imgproc.hpp>
 
 #include "tagmap/read_evidence.h"
@@ -89,6 +92,42 @@ struct PatternModel
 		return (1 - fr) * ((1 - fc) * a[c0] + fc * a[c0 + 1]) + fr * ((1 - fc) * b[c0] + fc * b[c0 + 1]);
 	}
 };
+
+/** The models with a smeared blur (kSmearedBlurCells, wider than the
+ *  points' own footprint): the same for every read of a code, so they are
+ *  built once per bitmap and blur rather than per read (a Gaussian of up
+ *  to 47 taps over 80 x 80 pixels each; building the three models was
+ *  about a third of a scan's fit). The footprint's own blur varies with
+ *  each read's spacing and is not kept. Bounded: emptied when full, which
+ *  changes only the time. */
+class SmearedModels
+{
+   public:
+	std::shared_ptr<const PatternModel> get(const TagBitmap& bm, double blurCells)
+	{
+		Key key{bm.cells, bm.borderStart, bm.borderCells, blurCells, bm.pixels};
+		{
+			std::lock_guard<std::mutex> lock(mutex_);
+			if (const auto it = models_.find(key); it != models_.end()) return it->second;
+		}
+		auto model = std::make_shared<const PatternModel>(bm, blurCells);
+		std::lock_guard<std::mutex> lock(mutex_);
+		if (models_.size() >= kMaxModels) models_.clear();
+		return models_.emplace(std::move(key), std::move(model)).first->second;
+	}
+
+   private:
+	using Key = std::tuple<int, int, int, double, std::vector<uint8_t>>;
+	static constexpr size_t kMaxModels = 512;  // ~25 kB each for a 10-cell grid
+	std::mutex mutex_;
+	std::map<Key, std::shared_ptr<const PatternModel>> models_;
+};
+
+SmearedModels& smearedModels()
+{
+	static SmearedModels cache;
+	return cache;
+}
 
 struct FitState
 {
@@ -211,12 +250,13 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 	// decoded pose, so a blurred tag is judged against a blurred bitmap, not
 	// a sharp one.
 	const double footprint = kPointFootprintSpacings * plane.localSpacing / cell0;
-	std::vector<PatternModel> models;
-	for (double blur : {footprint, std::max(footprint, kSmearedBlurCells[0]), std::max(footprint, kSmearedBlurCells[1])})
-		if (models.empty() || blur > 0) models.emplace_back(bm, blur);
+	// A smeared blur below the footprint's is the footprint's model again.
+	std::vector<std::shared_ptr<const PatternModel>> models = {std::make_shared<const PatternModel>(bm, footprint)};
+	for (double smeared : kSmearedBlurCells)
+		models.push_back(footprint < smeared ? smearedModels().get(bm, smeared) : models.front());
 
 	// Tag-plane coordinates of the inliers in the initial tag frame.
-	const Eigen::Isometry3d T0 = t.pose;
+	const Eigen::Isometry3d T0 = t.pose, toTag = T0.inverse();
 	std::vector<Eigen::Vector2d> q;
 	std::vector<double> I;
 	// The points on the grid at the decoded pose: the same set throughout
@@ -224,7 +264,7 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 	const double reach = 0.5 * bm.cells * cell0;
 	for (uint32_t i : plane.inliers)
 	{
-		const Eigen::Vector3d l = T0.inverse() * Eigen::Vector3d(xs[i], ys[i], zs[i]);
+		const Eigen::Vector3d l = toTag * Eigen::Vector3d(xs[i], ys[i], zs[i]);
 		if (std::abs(l.x()) > reach || std::abs(l.y()) > reach) continue;
 		q.emplace_back(l.x(), l.y());
 		I.push_back(is[i]);
@@ -232,7 +272,7 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 	if (q.size() < kMinPoints) return false;
 
 	// Residuals with the intensity gain and offset solved in closed form.
-	const PatternModel* model = &models.front();
+	const PatternModel* model = models.front().get();
 	const PatternModel* chosen = nullptr;
 	auto evaluate = [&](const FitState& s, bool wantResiduals) {
 		Evaluation e;
@@ -265,11 +305,11 @@ bool fitBitmap(TagDetection& t, const TagBitmap& bm, const PlaneImage& plane, co
 
 	FitState s;
 	Evaluation best;
-	for (const PatternModel& candidate : models)
+	for (const auto& candidate : models)
 	{
-		model = &candidate;
+		model = candidate.get();
 		const Evaluation e = evaluate(s, true);
-		if (chosen == nullptr || e.correlation > best.correlation) best = e, chosen = &candidate;
+		if (chosen == nullptr || e.correlation > best.correlation) best = e, chosen = candidate.get();
 	}
 	model = chosen;
 	// Numeric Jacobian of the residuals in the first n of (theta, dx, dy,
