@@ -74,7 +74,7 @@ namespace
 // block is a few contiguous runs (one per row), read four points at a time.
 struct SortedPoints
 {
-	std::vector<float> x, y, z, i;
+	FilledInParallel<float> x, y, z, i;
 };
 
 struct Span

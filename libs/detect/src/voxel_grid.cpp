@@ -24,10 +24,10 @@ int bitsFor(uint64_t maxValue)
 // Stable LSD radix sort of `a` by bits [lowBit, highBit), in passes of at
 // most 11 bits. Each pass: per-chunk histograms, prefix sums in (digit,
 // chunk) order, per-chunk scatter; the result is the same for any `threads`.
-void radixSort(std::vector<uint64_t>& a, int lowBit, int highBit, unsigned threads)
+void radixSort(FilledInParallel<uint64_t>& a, int lowBit, int highBit, unsigned threads)
 {
 	const size_t n = a.size();
-	std::vector<uint64_t> tmp(n);
+	FilledInParallel<uint64_t> tmp(n);  // every element is written by the first pass's scatter
 	const int passes = (highBit - lowBit + 10) / 11;
 	const int width = passes ? (highBit - lowBit + passes - 1) / passes : 0;
 	threads = n < 65536 ? 1u : std::max(1u, threads);
@@ -133,24 +133,35 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 		// key << idxBits | index in one word: sorting by the key bits keeps
 		// equal keys in index order (the sort is stable), as a sort of
 		// (key, index) pairs would.
-		std::vector<uint64_t> a(n);
+		FilledInParallel<uint64_t> a(n);
 		parallelForBlocks(n, threads, [&](size_t b, size_t e) {
 			for (size_t i = b; i < e; i++) a[i] = (keyOfPoint(i) << idxBits) | i;
 		}, 1 << 16);
 		radixSort(a, idxBits, idxBits + keyBits, threads);
+		// The voxels start where the sorted key changes: counted per chunk,
+		// then written at their places in parallel with the points' order
+		// (a push_back per voxel on one thread, its growth and the final
+		// shrink copied some 100 MB at the city's 20 M points).
 		const uint64_t idxMask = idxBits == 64 ? ~uint64_t{0} : (uint64_t{1} << idxBits) - 1;
-		parallelForBlocks(n, threads, [&](size_t b, size_t e) {
-			for (size_t i = b; i < e; i++) order_[i] = static_cast<uint32_t>(a[i] & idxMask);
-		}, 1 << 16);
-		for (size_t i = 0; i < n; i++)
-		{
-			const uint64_t key = a[i] >> idxBits;
-			if (i == 0 || key != keys_.back())
+		const auto startsVoxel = [&](size_t i) { return i == 0 || (a[i] >> idxBits) != (a[i - 1] >> idxBits); };
+		std::vector<size_t> firstVoxelOfChunk(threads + 1, 0);
+		parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
+			for (size_t i = b; i < e; i++) firstVoxelOfChunk[c + 1] += startsVoxel(i);
+		});
+		for (unsigned c = 0; c < threads; c++) firstVoxelOfChunk[c + 1] += firstVoxelOfChunk[c];
+		keys_.resize(firstVoxelOfChunk[threads]);
+		voxelStart_.resize(firstVoxelOfChunk[threads] + 1);
+		voxelStart_.back() = static_cast<uint32_t>(n);
+		parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
+			size_t v = firstVoxelOfChunk[c];
+			for (size_t i = b; i < e; i++)
 			{
-				voxelStart_.push_back(static_cast<uint32_t>(i));
-				keys_.push_back(key);
+				order_[i] = static_cast<uint32_t>(a[i] & idxMask);
+				if (!startsVoxel(i)) continue;
+				voxelStart_[v] = static_cast<uint32_t>(i);
+				keys_[v++] = a[i] >> idxBits;
 			}
-		}
+		});
 	}
 	else
 	{
@@ -166,10 +177,10 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 			}
 			order_[i] = keyed[i].second;
 		}
+		voxelStart_.push_back(static_cast<uint32_t>(n));
+		keys_.shrink_to_fit();
+		voxelStart_.shrink_to_fit();
 	}
-	voxelStart_.push_back(static_cast<uint32_t>(n));
-	keys_.shrink_to_fit();
-	voxelStart_.shrink_to_fit();
 }
 
 int32_t VoxelGrid::Axis::keyOf(int64_t r) const
@@ -230,7 +241,7 @@ VoxelGrid::NeighbourSweep::NeighbourSweep(const VoxelGrid& g, size_t firstVoxel)
 
 int VoxelGrid::NeighbourSweep::neighbours(size_t v, uint32_t (&out)[27])
 {
-	const std::vector<uint64_t>& keys = g_.keys_;
+	const auto& keys = g_.keys_;
 	const size_t count = keys.size();
 	const int64_t d0 = static_cast<int64_t>(g_.dims_[0]), d01 = static_cast<int64_t>(g_.dims_[0] * g_.dims_[1]);
 	const uint64_t k = keys[v];

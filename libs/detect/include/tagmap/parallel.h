@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <memory>
 #include <thread>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace tagmap
@@ -68,6 +71,40 @@ void parallelForChunks(size_t n, unsigned chunks, F&& f)
 	f(0u, r0.first, r0.second);
 	for (auto& t : pool) t.join();
 }
+
+/** std::allocator, except that a vector's resize() leaves its new elements
+ *  of a trivial type unset. For buffers a parallel loop fills right after:
+ *  std::vector would zero them on one thread first, touching (faulting in)
+ *  every page of hundreds of MB at the large maps' sizes; unset, each page
+ *  is first touched by the worker that fills it. */
+template <typename T>
+struct LeftUnset : std::allocator<T>
+{
+	template <typename U>
+	struct rebind
+	{
+		using other = LeftUnset<U>;
+	};
+	LeftUnset() = default;
+	template <typename U>
+	LeftUnset(const LeftUnset<U>&) noexcept
+	{
+	}
+	template <typename U>
+	void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>)
+	{
+		::new (static_cast<void*>(p)) U;  // default-initialised: a trivial U is left as it is
+	}
+	template <typename U, typename... Args>
+	void construct(U* p, Args&&... args)
+	{
+		::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+	}
+};
+
+/** A vector whose resize() does not zero (LeftUnset): fill every element. */
+template <typename T>
+using FilledInParallel = std::vector<T, LeftUnset<T>>;
 
 /** Number of threads to use: `requested`, or the hardware's when 0. */
 inline unsigned resolveThreads(unsigned requested)

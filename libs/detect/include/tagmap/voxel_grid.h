@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "tagmap/parallel.h"
+
 namespace tagmap
 {
 struct VoxelKey
@@ -190,7 +192,7 @@ class VoxelGrid
 
 	/** The first key at or after `from` not below `target`, by steps
 	 *  doubling from `from`, then a binary search in the last step. */
-	std::vector<uint64_t>::const_iterator firstNotBelow(std::vector<uint64_t>::const_iterator from, uint64_t target) const
+	FilledInParallel<uint64_t>::const_iterator firstNotBelow(FilledInParallel<uint64_t>::const_iterator from, uint64_t target) const
 	{
 		if (from == keys_.end() || *from >= target) return from;
 		auto below = from;  // *below < target
@@ -210,9 +212,9 @@ class VoxelGrid
 	Eigen::Vector3d origin_, lo_ = Eigen::Vector3d::Zero(), hi_ = Eigen::Vector3d::Zero();
 	Axis axis_[3];
 	uint64_t dims_[3] = {1, 1, 1};  // cells (keys) per axis, with a slack of 2 on either side
-	std::vector<uint32_t> order_;  // point indices sorted by voxel
-	std::vector<uint32_t> voxelStart_;  // voxel v owns order_[voxelStart_[v], voxelStart_[v+1])
-	std::vector<uint64_t> keys_;  // linear key of each voxel, ascending
+	FilledInParallel<uint32_t> order_;  // point indices sorted by voxel
+	FilledInParallel<uint32_t> voxelStart_;  // voxel v owns order_[voxelStart_[v], voxelStart_[v+1])
+	FilledInParallel<uint64_t> keys_;  // linear key of each voxel, ascending
 };
 
 }  // namespace tagmap
