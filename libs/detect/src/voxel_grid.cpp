@@ -183,9 +183,8 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 	}
 }
 
-int32_t VoxelGrid::Axis::keyOf(int64_t r) const
+int32_t VoxelGrid::Axis::packedKeyOf(int64_t r) const
 {
-	if (!packed) return static_cast<int32_t>(std::clamp<int64_t>(r, INT32_MIN, INT32_MAX));
 	const size_t k = static_cast<size_t>(std::lower_bound(real.begin(), real.end(), r) - real.begin());
 	if (k < real.size() && real[k] == r) return key[k];
 	// Between occupied cells: the empty key after the lower one, which is
@@ -198,11 +197,6 @@ int64_t VoxelGrid::Axis::realOf(int32_t k) const
 	if (!packed) return k;
 	const size_t j = static_cast<size_t>(std::upper_bound(key.begin(), key.end(), k) - key.begin());
 	return j == 0 ? real.front() - (key.front() - k) : real[j - 1] + (k - key[j - 1]);
-}
-
-VoxelKey VoxelGrid::keyOf(const Eigen::Vector3f& p) const
-{
-	return {keyAlong(0, p.x()), keyAlong(1, p.y()), keyAlong(2, p.z())};
 }
 
 VoxelKey VoxelGrid::keyOfVoxel(size_t voxel) const

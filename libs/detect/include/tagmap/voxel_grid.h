@@ -49,7 +49,7 @@ class VoxelGrid
 	size_t voxelCount() const { return keys_.size(); }
 	size_t pointCount() const { return order_.size(); }
 
-	VoxelKey keyOf(const Eigen::Vector3f& p) const;
+	VoxelKey keyOf(const Eigen::Vector3f& p) const { return {keyAlong(0, p.x()), keyAlong(1, p.y()), keyAlong(2, p.z())}; }
 	/** One axis of keyOf(): keys are separable, axis by axis. */
 	int32_t keyAlong(int axis, float coordinate) const { return axis_[axis].keyOf(realCell(coordinate, axis)); }
 	VoxelKey keyOfVoxel(size_t voxel) const;
@@ -185,7 +185,13 @@ class VoxelGrid
 		bool packed = false;
 		std::vector<int64_t> real;
 		std::vector<int32_t> key;
-		int32_t keyOf(int64_t r) const;
+		/** The key of real cell r: r itself on an axis not packed (inline:
+		 *  every point of a map asks, some more than once). */
+		int32_t keyOf(int64_t r) const
+		{
+			return packed ? packedKeyOf(r) : static_cast<int32_t>(std::clamp<int64_t>(r, INT32_MIN, INT32_MAX));
+		}
+		int32_t packedKeyOf(int64_t r) const;
 		int64_t realOf(int32_t k) const;
 	};
 	int64_t realCell(double p, int a) const { return static_cast<int64_t>(std::floor((p - origin_[a]) / cellSize_)); }
