@@ -146,7 +146,9 @@ VoxelGrid::VoxelGrid(const float* xs, const float* ys, const float* zs, size_t n
 		const auto startsVoxel = [&](size_t i) { return i == 0 || (a[i] >> idxBits) != (a[i - 1] >> idxBits); };
 		std::vector<size_t> firstVoxelOfChunk(threads + 1, 0);
 		parallelForChunks(n, threads, [&](unsigned c, size_t b, size_t e) {
-			for (size_t i = b; i < e; i++) firstVoxelOfChunk[c + 1] += startsVoxel(i);
+			size_t starts = 0;  // counted locally: the chunks' totals share a cache line
+			for (size_t i = b; i < e; i++) starts += startsVoxel(i);
+			firstVoxelOfChunk[c + 1] = starts;
 		});
 		for (unsigned c = 0; c < threads; c++) firstVoxelOfChunk[c + 1] += firstVoxelOfChunk[c];
 		keys_.resize(firstVoxelOfChunk[threads]);
