@@ -72,8 +72,11 @@ namespace
 {
 // The map's points in voxel order, one array per field: a voxel's 3x3x3
 // block is a few contiguous runs (one per row), read four points at a time.
+// Each array has kPadding elements past the last point, so a run's last
+// 1-3 points load as one vector like the others (gradientNorm()).
 struct SortedPoints
 {
+	static constexpr size_t kPadding = 3;
 	FilledInParallel<float> x, y, z, i;
 };
 
@@ -86,6 +89,9 @@ using Float4 = float __attribute__((vector_size(16)));
 using Int4 = int32_t __attribute__((vector_size(16)));
 
 float sum4(Float4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
+// Lane masks of the first 1, 2 and 3 lanes.
+constexpr Int4 kFirstLanes[3] = {{-1, 0, 0, 0}, {-1, -1, 0, 0}, {-1, -1, -1, 0}};
 
 /** The fraction of the intensity variance that a slope fitted along
  *  `directions` directions explains by chance, with probability 1e-3, when
@@ -157,10 +163,17 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 		}
 		if (k < spans[s].end)  // the last 1-3 points, the rest of the lanes masked off
 		{
-			Float4 X = vcx, Y = vcy, Z = vcz, I{}, valid{};
-			for (int l = 0; k < spans[s].end; k++, l++)
-				X[l] = pts.x[k], Y[l] = pts.y[k], Z[l] = pts.z[k], I[l] = pts.i[k], valid[l] = 1;
-			accumulate(X, Y, Z, I, valid);
+			// The lanes past the run hold the next points (or the padding):
+			// they become the centre with no intensity, which add exact
+			// zeros, whatever those points are.
+			const Int4 lanes = kFirstLanes[spans[s].end - k - 1];
+			Float4 X, Y, Z, I;
+			std::memcpy(&X, pts.x.data() + k, sizeof X);
+			std::memcpy(&Y, pts.y.data() + k, sizeof Y);
+			std::memcpy(&Z, pts.z.data() + k, sizeof Z);
+			std::memcpy(&I, pts.i.data() + k, sizeof I);
+			accumulate(lanes ? X : vcx, lanes ? Y : vcy, lanes ? Z : vcz, lanes ? I : Float4{},
+					   lanes ? one : Float4{});
 		}
 	}
 	const int count = static_cast<int>(sum4(inside));
@@ -204,7 +217,11 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 	// contiguous runs (one per row), read by a forward sweep, instead of 27
 	// random lookups and scattered loads per point.
 	SortedPoints sorted;
-	for (auto* a : {&sorted.x, &sorted.y, &sorted.z, &sorted.i}) a->resize(n);
+	for (auto* a : {&sorted.x, &sorted.y, &sorted.z, &sorted.i})
+	{
+		a->resize(n + SortedPoints::kPadding);
+		std::fill(a->begin() + static_cast<std::ptrdiff_t>(n), a->end(), 0.0f);
+	}
 	const uint32_t* order = grid.begin(0);
 	parallelForBlocks(n, threads, [&](size_t b, size_t e) {
 		for (size_t k = b; k < e; k++)
