@@ -178,6 +178,48 @@ TEST(VoxelGrid, BlockScanVisitsTheSameVoxelsAsFind)
 	}
 }
 
+TEST(VoxelGrid, SweepGivesEachBlocksVoxelsAndRows)
+{
+	// Voxels visited in ascending order from any first voxel, sparse and
+	// dense places, the grid's faces: neighbours() gives exactly the
+	// voxels find() reports in the 3x3x3 block, and rows() the same voxels
+	// as ranges, one per non-empty row, each of one y and z.
+	std::mt19937 rng(5);
+	std::uniform_real_distribution<float> u(0.0f, 1.0f);
+	std::vector<float> x(8000), y(8000), z(8000);
+	for (size_t i = 0; i < x.size(); i++)
+		x[i] = u(rng), y[i] = i % 2 ? 0.3f * u(rng) : u(rng), z[i] = 0.4f * u(rng);
+	const VoxelGrid grid(x.data(), y.data(), z.data(), x.size(), 0.04, 1);
+	for (const size_t first : {size_t{0}, grid.voxelCount() / 3})
+	{
+		VoxelGrid::NeighbourSweep byVoxel(grid, first), byRow(grid, first);
+		for (size_t v = first; v < grid.voxelCount(); v++)
+		{
+			const VoxelKey k = grid.keyOfVoxel(v);
+			std::vector<uint32_t> expected;
+			for (int dz = -1; dz <= 1; dz++)
+				for (int dy = -1; dy <= 1; dy++)
+					for (int dx = -1; dx <= 1; dx++)
+						if (const int64_t f = grid.find({k.x + dx, k.y + dy, k.z + dz}); f >= 0)
+							expected.push_back(static_cast<uint32_t>(f));
+			uint32_t block[27];
+			const int count = byVoxel.neighbours(v, block);
+			ASSERT_EQ(std::vector<uint32_t>(block, block + count), expected) << v;
+			VoxelGrid::NeighbourSweep::Row rows[9];
+			const int rowCount = byRow.rows(v, rows);
+			std::vector<uint32_t> fromRows;
+			for (int r = 0; r < rowCount; r++)
+			{
+				ASSERT_LT(rows[r].first, rows[r].end);
+				const VoxelKey a = grid.keyOfVoxel(rows[r].first), b = grid.keyOfVoxel(rows[r].end - 1);
+				EXPECT_TRUE(a.y == b.y && a.z == b.z) << v;
+				for (uint32_t c = rows[r].first; c < rows[r].end; c++) fromRows.push_back(c);
+			}
+			ASSERT_EQ(fromRows, expected) << v;
+		}
+	}
+}
+
 TEST(VoxelGrid, KeysWalkedRowByRowAreEachVoxelsKey)
 {
 	// Any range of voxels, starting mid-row or not, dense rows and lone

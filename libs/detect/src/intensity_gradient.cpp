@@ -149,16 +149,19 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 		sii += w * I * I;
 		inside += w;
 	};
+	Float4 X, Y, Z, I;
+	const auto load = [&](uint32_t k) {  // points k .. k+3
+		std::memcpy(&X, pts.x.data() + k, sizeof X);
+		std::memcpy(&Y, pts.y.data() + k, sizeof Y);
+		std::memcpy(&Z, pts.z.data() + k, sizeof Z);
+		std::memcpy(&I, pts.i.data() + k, sizeof I);
+	};
 	for (int s = 0; s < spanCount; s++)
 	{
 		uint32_t k = spans[s].begin;
 		for (; k + 4 <= spans[s].end; k += 4)
 		{
-			Float4 X, Y, Z, I;
-			std::memcpy(&X, pts.x.data() + k, sizeof X);
-			std::memcpy(&Y, pts.y.data() + k, sizeof Y);
-			std::memcpy(&Z, pts.z.data() + k, sizeof Z);
-			std::memcpy(&I, pts.i.data() + k, sizeof I);
+			load(k);
 			accumulate(X, Y, Z, I, one);
 		}
 		if (k < spans[s].end)  // the last 1-3 points, the rest of the lanes masked off
@@ -167,11 +170,7 @@ double gradientNorm(const Eigen::Vector3f& centre, const SortedPoints& pts, cons
 			// they become the centre with no intensity, which add exact
 			// zeros, whatever those points are.
 			const Int4 lanes = kFirstLanes[spans[s].end - k - 1];
-			Float4 X, Y, Z, I;
-			std::memcpy(&X, pts.x.data() + k, sizeof X);
-			std::memcpy(&Y, pts.y.data() + k, sizeof Y);
-			std::memcpy(&Z, pts.z.data() + k, sizeof Z);
-			std::memcpy(&I, pts.i.data() + k, sizeof I);
+			load(k);
 			accumulate(lanes ? X : vcx, lanes ? Y : vcy, lanes ? Z : vcz, lanes ? I : Float4{},
 					   lanes ? one : Float4{});
 		}
@@ -249,18 +248,19 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 	std::atomic<size_t> examined{0};
 	parallelForBlocks(grid.voxelCount(), threads, [&](size_t vb, size_t ve) {
 		VoxelGrid::NeighbourSweep sweep(grid, vb);
-		uint32_t block[27];
-		Span spans[27];
+		VoxelGrid::NeighbourSweep::Row rows[9];
+		Span spans[9];
 		for (size_t v = vb; v < ve; v++)
 		{
-			// The block's voxels in ascending order; consecutive voxels (one
-			// row) hold consecutive points, so they join into one span.
-			const int count = sweep.neighbours(v, block);
+			// The block's rows in ascending order: a row's voxels hold
+			// consecutive points, and so do two rows with no voxel between
+			// them; each such run is one span.
+			const int rowCount = sweep.rows(v, rows);
 			int spanCount = 0;
-			for (int b = 0; b < count; b++)
+			for (int r = 0; r < rowCount; r++)
 			{
-				const auto first = static_cast<uint32_t>(grid.voxelOffset(block[b]));
-				const auto last = static_cast<uint32_t>(grid.voxelOffset(block[b] + 1));
+				const auto first = static_cast<uint32_t>(grid.voxelOffset(rows[r].first));
+				const auto last = static_cast<uint32_t>(grid.voxelOffset(rows[r].end));
 				if (spanCount > 0 && spans[spanCount - 1].end == first) spans[spanCount - 1].end = last;
 				else spans[spanCount++] = {first, last};
 			}

@@ -235,7 +235,7 @@ VoxelGrid::NeighbourSweep::NeighbourSweep(const VoxelGrid& g, size_t firstVoxel)
 	}
 }
 
-int VoxelGrid::NeighbourSweep::neighbours(size_t v, uint32_t (&out)[27])
+int VoxelGrid::NeighbourSweep::rows(size_t v, Row (&out)[9])
 {
 	const auto& keys = g_.keys_;
 	const size_t count = keys.size();
@@ -248,8 +248,20 @@ int VoxelGrid::NeighbourSweep::neighbours(size_t v, uint32_t (&out)[27])
 		size_t c = cursor_[j];
 		while (c < count && keys[c] < lo) c++;
 		cursor_[j] = c;
-		for (; c < count && keys[c] <= hi; c++) out[found++] = static_cast<uint32_t>(c);
+		size_t end = c;
+		while (end < count && keys[end] <= hi) end++;
+		if (end > c) out[found++] = {static_cast<uint32_t>(c), static_cast<uint32_t>(end)};
 	}
+	return found;
+}
+
+int VoxelGrid::NeighbourSweep::neighbours(size_t v, uint32_t (&out)[27])
+{
+	Row block[9];
+	const int rowCount = rows(v, block);
+	int found = 0;
+	for (int r = 0; r < rowCount; r++)
+		for (uint32_t c = block[r].first; c < block[r].end; c++) out[found++] = c;
 	return found;
 }
 

@@ -171,6 +171,16 @@ class VoxelGrid
 		 *  not be less than the previous call's. */
 		int neighbours(size_t v, uint32_t (&out)[27]);
 
+		/** Voxels [first, end) of one row of a block: consecutive indices. */
+		struct Row
+		{
+			uint32_t first, end;
+		};
+		/** The same block as neighbours(), as its non-empty rows (x-1..x+1
+		 *  at one y and z) in ascending order; returns their number (<= 9).
+		 *  The rows' points are contiguous in the grid's order. */
+		int rows(size_t v, Row (&out)[9]);
+
 	   private:
 		const VoxelGrid& g_;
 		size_t cursor_[9];
