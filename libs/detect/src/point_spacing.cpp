@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -31,18 +32,21 @@ class CellTable
 	explicit CellTable(size_t expected)
 	{
 		size_t cap = 64;
-		while (cap < 2 * expected) cap <<= 1;
+		int bits = 6;
+		while (cap < 2 * expected) cap <<= 1, bits++;
 		keys_.assign(cap, kEmpty);
 		ids_.assign(cap, 0);
 		mask_ = cap - 1;
+		shift_ = 64 - bits;
 	}
-	void insert(uint64_t k)
+	/** The bucket id of `k`, a new one (the next) if `k` was not in. */
+	uint32_t insert(uint64_t k)
 	{
 		uint64_t s = slot(k);
 		while (keys_[s] != kEmpty && keys_[s] != k) s = (s + 1) & mask_;
-		if (keys_[s] == k) return;
+		if (keys_[s] == k) return ids_[s];
 		keys_[s] = k;
-		ids_[s] = count_++;
+		return ids_[s] = count_++;
 	}
 	int64_t find(uint64_t k) const
 	{
@@ -55,10 +59,13 @@ class CellTable
 	uint32_t size() const { return count_; }
 
    private:
-	uint64_t slot(uint64_t k) const { return ((k ^ (k >> 29)) * 0x9E3779B97F4A7C15ULL >> 17) & mask_; }
+	// Fibonacci hashing: the product's top bits, which every bit of the
+	// key (x, y and z packed in 21 bits each) reaches.
+	uint64_t slot(uint64_t k) const { return (k * 0x9E3779B97F4A7C15ULL) >> shift_; }
 	std::vector<uint64_t> keys_;
 	std::vector<uint32_t> ids_;
 	uint64_t mask_ = 0;
+	int shift_ = 58;
 	uint32_t count_ = 0;
 };
 
@@ -96,10 +103,14 @@ enum class Pass
 Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, const std::vector<size_t>& samples,
 				   const Eigen::Vector3d& lo, double cell, unsigned threads, double& median)
 {
-	auto key = [&](size_t i, int dx, int dy, int dz) {
-		return cellKey(static_cast<int64_t>(std::floor((xs[i] - lo.x()) / cell)) + dx,
-					   static_cast<int64_t>(std::floor((ys[i] - lo.y()) / cell)) + dy,
-					   static_cast<int64_t>(std::floor((zs[i] - lo.z()) / cell)) + dz);
+	// A point's cell, once per point: its 3x3x3 block's keys are offsets of it.
+	const auto cellOf = [&](size_t i) {
+		return std::array<int64_t, 3>{static_cast<int64_t>(std::floor((xs[i] - lo.x()) / cell)),
+									  static_cast<int64_t>(std::floor((ys[i] - lo.y()) / cell)),
+									  static_cast<int64_t>(std::floor((zs[i] - lo.z()) / cell))};
+	};
+	const auto key = [](const std::array<int64_t, 3>& c, int dx, int dy, int dz) {
+		return cellKey(c[0] + dx, c[1] + dy, c[2] + dz);
 	};
 	// The cells bucketed: the samples' blocks (27 cells each), so that a
 	// large map's points far from every sample are skipped; or, when there
@@ -107,13 +118,20 @@ Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, 
 	// The same points fall in a sample's block either way.
 	const bool everyPoint = n <= 27 * samples.size();
 	CellTable cells(everyPoint ? n : 27 * samples.size());
+	std::vector<uint32_t> ownBucket;  // every point's, when every point is bucketed
 	if (everyPoint)
-		for (size_t i = 0; i < n; i++) cells.insert(key(i, 0, 0, 0));
+	{
+		ownBucket.resize(n);
+		for (size_t i = 0; i < n; i++) ownBucket[i] = cells.insert(key(cellOf(i), 0, 0, 0));
+	}
 	else
 		for (size_t s : samples)
+		{
+			const std::array<int64_t, 3> c = cellOf(s);
 			for (int dz = -1; dz <= 1; dz++)
 				for (int dy = -1; dy <= 1; dy++)
-					for (int dx = -1; dx <= 1; dx++) cells.insert(key(s, dx, dy, dz));
+					for (int dx = -1; dx <= 1; dx++) cells.insert(key(c, dx, dy, dz));
+		}
 
 	// (bucket, point) pairs per chunk of the map, in point order.
 	const size_t limit = 200 * samples.size() + 100000;
@@ -124,7 +142,7 @@ Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, 
 		auto& part = parts[c];
 		for (size_t i = b; i < e; i++)
 		{
-			const int64_t id = cells.find(key(i, 0, 0, 0));
+			const int64_t id = everyPoint ? ownBucket[i] : cells.find(key(cellOf(i), 0, 0, 0));
 			if (id < 0) continue;
 			part.emplace_back(static_cast<uint32_t>(id), static_cast<uint32_t>(i));
 			if ((part.size() & 1023) == 0 && collected.fetch_add(1024) + 1024 > limit)
@@ -157,11 +175,12 @@ Pass medianNearest(const float* xs, const float* ys, const float* zs, size_t n, 
 		// spacing is the float distance it always was.
 		double best = std::numeric_limits<double>::max();
 		size_t nearest = s;
+		const std::array<int64_t, 3> c = cellOf(s);
 		for (int dz = -1; dz <= 1; dz++)
 			for (int dy = -1; dy <= 1; dy++)
 				for (int dx = -1; dx <= 1; dx++)
 				{
-					const int64_t id = cells.find(key(s, dx, dy, dz));
+					const int64_t id = cells.find(key(c, dx, dy, dz));
 					if (id < 0) continue;  // an empty cell (only bucketed cells are kept)
 					for (uint32_t k = start[id]; k < start[id + 1]; k++)
 					{
