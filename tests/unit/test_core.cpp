@@ -116,6 +116,30 @@ TEST(TagFamily, EveryCodeDrawnInTurnIsItsOwnBitmap)
 	EXPECT_THROW(forEachTagBitmap("tag99h99", [](int, const TagBitmap&) {}), std::invalid_argument);
 }
 
+TEST(TagFamily, CodeCellBitsAreEachCodesWhiteCells)
+{
+	// Grids of 121 (tag25h9), 144 (tag36h11), 169 (tagCircle49h12: into a
+	// third word) and 64 (aruco_4x4_50: one word) cells: the bits are
+	// gathered eight cells at a time, and a grid that is no multiple of 8
+	// ends with single cells.
+	for (const char* n : {"tag25h9", "tag36h11", "tagCircle49h12", "aruco_4x4_50"})
+	{
+		const std::vector<TagCellBits>& bits = codeCellBits(n);
+		ASSERT_EQ(static_cast<int>(bits.size()), findFamily(n)->idCount) << n;
+		EXPECT_EQ(&bits, &codeCellBits(n)) << "made once per process";
+		int differing = 0;
+		for (int id : {0, 1, findFamily(n)->idCount / 2, findFamily(n)->idCount - 1})
+		{
+			const TagBitmap bm = renderTagBitmap(n, id);
+			TagCellBits expected;
+			for (size_t k = 0; k < bm.pixels.size(); k++) expected[k] = bm.pixels[k] != 0;
+			differing += bits[static_cast<size_t>(id)] != expected;
+		}
+		EXPECT_EQ(differing, 0) << n;
+	}
+	EXPECT_THROW(codeCellBits("tag99h99"), std::invalid_argument);
+}
+
 TEST(TagFamily, NestedArucoDictionariesNameTheSameMarker)
 {
 	EXPECT_TRUE(sameMarker("aruco_4x4_50", 7, "aruco_4x4_1000", 7));

@@ -406,4 +406,50 @@ void forEachTagBitmap(const std::string& family, const std::function<void(int id
 	}
 }
 
+const std::vector<TagCellBits>& codeCellBits(const std::string& family)
+{
+	checkedFamily(family);
+	struct Table
+	{
+		std::once_flag made;
+		std::vector<TagCellBits> codes;
+	};
+	Table* table = nullptr;
+	{
+		static std::mutex mutex;
+		static std::map<std::string, std::unique_ptr<Table>> tables;
+		std::lock_guard<std::mutex> lock(mutex);
+		auto& slot = tables[family];
+		if (!slot) slot = std::make_unique<Table>();
+		table = slot.get();
+	}
+	std::call_once(table->made, [&] {
+		table->codes.reserve(static_cast<size_t>(findFamily(family)->idCount));
+		forEachTagBitmap(family, [&](int, const TagBitmap& bm) {
+			if (bm.pixels.size() > TagCellBits().size())
+				throw std::logic_error("tag grid larger than 256 cells: " + family);
+			// 64 cells to a word, then the words into the bitset (it has no
+			// word access of its own). A cell is 0 or 255, so a byte's top
+			// bit is its colour: eight cells read as one little-endian word,
+			// the multiply gathers their top bits into its top byte (cell j
+			// at bit 56 + j), instead of a shift and an OR per cell.
+			std::array<uint64_t, 4> words{};
+			const uint8_t* cell = bm.pixels.data();
+			const size_t n = bm.pixels.size();
+			size_t k = 0;
+			for (; k + 8 <= n; k += 8)
+			{
+				uint64_t eight = 0;
+				for (unsigned b = 0; b < 8; b++) eight |= static_cast<uint64_t>(cell[k + b]) << (8 * b);
+				words[k / 64] |= ((eight & 0x8080808080808080ull) * 0x0002040810204081ull >> 56) << (k % 64);
+			}
+			for (; k < n; k++) words[k / 64] |= static_cast<uint64_t>(cell[k] != 0) << (k % 64);
+			TagCellBits bits;
+			for (size_t w = words.size(); w-- > 0;) (bits <<= 64) |= TagCellBits(words[w]);
+			table->codes.push_back(bits);
+		});
+	});
+	return table->codes;
+}
+
 }  // namespace tagmap

@@ -98,30 +98,6 @@ CellThreshold thresholdOf(const std::vector<float>& sample, const TagBitmap& bm,
 	return th;
 }
 
-// A family's grid as bits, cell k at bit k (the largest grid, tagCircle49h12's
-// with its quiet zone, has 13 x 13 cells).
-using CellBits = std::bitset<256>;
-
-// Every code of a family as its bitmap's bits, cached: the nearest-code
-// search compares a read with all of them (65 k for the largest family),
-// each in a few XORs and popcounts.
-const std::vector<CellBits>& familyCodes(const std::string& family)
-{
-	static std::mutex mutex;
-	static std::map<std::string, std::unique_ptr<std::vector<CellBits>>> cache;
-	std::lock_guard<std::mutex> lock(mutex);
-	auto& slot = cache[family];
-	if (slot) return *slot;
-	slot = std::make_unique<std::vector<CellBits>>();
-	forEachTagBitmap(family, [&](int, const TagBitmap& bm) {
-		if (bm.pixels.size() > CellBits().size()) throw std::logic_error("tag grid larger than 256 cells: " + family);
-		CellBits bits;
-		for (size_t k = 0; k < bm.pixels.size(); k++) bits[k] = bm.pixels[k] != 0;
-		slot->push_back(bits);
-	});
-	return *slot;
-}
-
 // The verdict on counted evidence: chance first, then the border ring, then
 // the quiet zone. `ringChance`: the chance of a match as good over the code
 // cells and the ring's together (a ring cell read white an error like a
@@ -300,11 +276,11 @@ CodeDistances codeDistances(const std::vector<float>& cells, const std::string& 
 	// colours, its code cells and its own code's colours there), so a code's
 	// distance is a few XORs and popcounts.
 	d.toNearestOther = clearCount + 1;
-	const std::vector<CellBits>& codes = familyCodes(family);
+	const std::vector<TagCellBits>& codes = codeCellBits(family);
 	for (int o = 0; o < orientations; o++)
 	{
 		const std::vector<int>& perm = cellPermutation(bm.cells, o);
-		CellBits clearAt, whiteAt, codeAt, ownAt;
+		TagCellBits clearAt, whiteAt, codeAt, ownAt;
 		for (size_t j = 0; j < perm.size(); j++)
 		{
 			const size_t k = static_cast<size_t>(perm[j]);

@@ -64,35 +64,24 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	fc.borderStart = first.borderStart;
 	fc.borderCells = first.borderCells;
 	const size_t all = static_cast<size_t>(fc.cells * fc.cells);
-	// Every code's cells, one bit each: the largest families have 65 k
-	// codes, which as TagBitmaps held 10 MB while the table was built.
-	const size_t allBytes = (all + 7) / 8;
-	std::vector<uint8_t> cellsWhite(allBytes * static_cast<size_t>(fc.idCount), 0);
-	const auto isWhite = [&](int id, size_t i) { return (cellsWhite[id * allBytes + i / 8] >> (i % 8)) & 1u; };
-	std::vector<int> whiteCount(all, 0);
-	// Without branches: a code's cells are as random as its bits, and a
-	// mispredicted branch per cell was a third of a 65 k-code table's time.
-	forEachTagBitmap(family, [&](int id, const TagBitmap& bm) {
-		uint8_t* bits = &cellsWhite[static_cast<size_t>(id) * allBytes];
-		for (size_t i = 0; i < all; i++)
-		{
-			const unsigned white = bm.pixels[i] != 0;
-			whiteCount[i] += static_cast<int>(white);
-			bits[i / 8] |= static_cast<uint8_t>(white << (i % 8));
-		}
-	});
+	// Every code's cells, one bit each, shared with the nearest-code search.
+	const std::vector<TagCellBits>& codes = codeCellBits(family);
 	// Cells that are the same in every code carry no information about the
 	// id; leaving them out makes the correlation tell codes apart.
+	TagCellBits whiteInSome, whiteInAll;
+	whiteInAll.set();
+	for (const TagCellBits& code : codes) whiteInSome |= code, whiteInAll &= code;
 	for (size_t i = 0; i < all; i++)
-		if (whiteCount[i] != 0 && whiteCount[i] != fc.idCount) fc.informative.push_back(static_cast<int>(i));
+		if (whiteInSome[i] && !whiteInAll[i]) fc.informative.push_back(static_cast<int>(i));
 	const size_t n = fc.informative.size();
 	fc.whiteBytes = (n + 7) / 8;
 	fc.white.assign(fc.whiteBytes * static_cast<size_t>(fc.idCount), 0);
 	for (int id = 0; id < fc.idCount; id++)
 	{
+		const TagCellBits& code = codes[static_cast<size_t>(id)];
 		uint8_t* packed = &fc.white[static_cast<size_t>(id) * fc.whiteBytes];
 		for (size_t j = 0; j < n; j++)
-			packed[j / 8] |= static_cast<uint8_t>(isWhite(id, static_cast<size_t>(fc.informative[j])) << (j % 8));
+			packed[j / 8] |= static_cast<uint8_t>(code[static_cast<size_t>(fc.informative[j])] << (j % 8));
 	}
 	// Cells every code shares: the border ring is black, the quiet zone white.
 	fc.borderMask.assign(all, 0);

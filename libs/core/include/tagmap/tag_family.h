@@ -4,6 +4,7 @@
 // stage (to read them) go through this one registry.
 #pragma once
 
+#include <bitset>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -99,6 +100,19 @@ TagBitmap renderTagBitmap(const std::string& family, int id);
  *  call only). For tables of every code of a family (65 k codes for the
  *  largest). Throws std::invalid_argument on an unknown family. */
 void forEachTagBitmap(const std::string& family, const std::function<void(int id, const TagBitmap&)>& visit);
+
+/** A bitmap's cells as bits: cell k of TagBitmap::pixels at bit k, set
+ *  where the cell is white (the largest grid, tagCircle49h12's with its
+ *  quiet zone, has 13 x 13 cells). */
+using TagCellBits = std::bitset<256>;
+
+/** Every code of `family` as TagCellBits, in id order: made once per
+ *  process on first use (from forEachTagBitmap()) and shared by every
+ *  table that compares a read with all codes (the nearest-code search,
+ *  the soft decoder's). Families are made independently, so two threads
+ *  needing two families do not wait for each other. Throws
+ *  std::invalid_argument on an unknown family. */
+const std::vector<TagCellBits>& codeCellBits(const std::string& family);
 
 /** The ids that, drawn beside id 0, show every cell in which the family's
  *  codes differ: for each bit of the code words, the first id that turns
