@@ -7,12 +7,14 @@
 #include <random>
 #include <opencv2/core.hpp>
 #include <opencv2/core/base.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "tagmap/image_variants.h"
 #include "tagmap/read_evidence.h"
 #include "tagmap/soft_decoder.h"
 #include "tagmap/tag_decoder.h"
 #include "tagmap/tag_family.h"
+#include "tagmap/tag_quads.h"
 
 using namespace tagmap;
 
@@ -217,6 +219,50 @@ TEST(SoftTagDecoder, MostlyUnscannedTagIsNotRead)
 	read.id = 5;
 	read.corners = corners;
 	EXPECT_TRUE(assessMeasuredRead(img, measured, read, 8, {"tag36h11"}, {}).rejection);
+}
+
+// Families whose border ring is white (libapriltag's reversed border) are
+// outlined by the black ring around it or by the whole printed tag; the
+// soft decoder reads them from any of those quads, noisy and blurred, and
+// reports the border square's corners. Before, it read none of them.
+TEST(SoftTagDecoder, ReadsWhiteBorderFamiliesFromTheirDarkOutlines)
+{
+	for (const char* family : {"tagStandard41h12", "tagStandard52h13", "tagCircle49h12"})
+	{
+		std::array<Eigen::Vector2d, 4> border;
+		const int px = 12, pad = 30;
+		cv::Mat img = drawTag(family, 7, px, pad, border);
+		cv::GaussianBlur(img, img, cv::Size(), 0.3 * px);
+		std::mt19937 rng(7);
+		std::normal_distribution<double> noise(0, 40);
+		for (int r = 0; r < img.rows; r++)
+			for (int c = 0; c < img.cols; c++)
+				img.at<uint8_t>(r, c) = cv::saturate_cast<uint8_t>(img.at<uint8_t>(r, c) * 0.8 + 25 + noise(rng));
+		const TagBitmap bm = renderTagBitmap(family, 7);
+		const SoftTagDecoder decoder({family});
+		// The quad as each square: the border (white), the black ring one
+		// cell out, the whole printed tag (inside the one-cell quiet zone).
+		for (int out : {0, 1, bm.borderStart - 1})
+		{
+			const double b0 = pad + (bm.borderStart - out) * px, b1 = pad + (bm.borderStart + bm.borderCells + out) * px;
+			const Quad quad = {Eigen::Vector2d(b0, b0), Eigen::Vector2d(b1, b0), Eigen::Vector2d(b1, b1),
+							   Eigen::Vector2d(b0, b1)};
+			const std::vector<DecodedTag2D> found = decoder.decode(img, {quad});
+			ASSERT_EQ(found.size(), 1u) << family << " outline " << out << " cells out";
+			EXPECT_EQ(found[0].id, 7) << family;
+			EXPECT_FALSE(found[0].mirrored);
+			for (int k = 0; k < 4; k++) EXPECT_LT((found[0].corners[k] - border[k]).norm(), 1e-6) << family;
+		}
+		// Half a ring off, the frame does not fit: no read.
+		const double b0 = pad + (bm.borderStart - 0.5) * px, b1 = pad + (bm.borderStart + bm.borderCells + 0.5) * px;
+		EXPECT_TRUE(decoder
+						.decode(img, {Quad{Eigen::Vector2d(b0, b0), Eigen::Vector2d(b1, b0), Eigen::Vector2d(b1, b1),
+										   Eigen::Vector2d(b0, b1)}})
+						.empty())
+			<< family;
+		// A scan's sensor view leaves these families to libapriltag.
+		EXPECT_TRUE(decoder.decode(img, {border}, nullptr, false).empty()) << family;
+	}
 }
 
 TEST(ReadEvidence, MeasuredReadNeedsItsFrameScanned)

@@ -133,12 +133,15 @@ class CandidateDecoder
 		// image on the view's quad (0.05 ms), then, for a read of
 		// libapriltag's, libapriltag the raw image (0.45 ms). The outline
 		// search, the look below and the decoders' variants sort clutter
-		// out; a tag read here needs none of them.
+		// out; a tag read here needs none of them. The view's quad is read
+		// as the view read it: families with white border rings are
+		// libapriltag's there (SoftTagDecoder::decode).
 		if (candidate.cornersInView)
 		{
 			Quad inView;
 			for (int k = 0; k < 4; k++) inView[k] = plane.frame.toImage((*candidate.cornersInView)[k]);
-			if (tryReads(soft.decode(plane.gray, {inView}, &plane.measured), plane.gray, 1.0, plane, earlier, out))
+			if (tryReads(soft.decode(plane.gray, {inView}, &plane.measured, false), plane.gray, 1.0, plane, earlier,
+						 out))
 				return out;
 		}
 		const std::vector<Quad> noQuads;

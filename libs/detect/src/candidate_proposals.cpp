@@ -157,7 +157,10 @@ SensorViewReads readSensorView(const MapView& m, const PipelineParams& p, const 
 	const std::vector<Quad> quads =
 		findTagQuads(out.view.gray, p.sensorView.maxQuads, fewestCells * out.view.angularSpacing / out.view.pixel);
 	out.reads = hard.decode(out.view.gray, &quads);
-	for (DecodedTag2D& d : soft.decode(out.view.gray, quads)) out.reads.push_back(std::move(d));
+	// The view proposes boxes for its reads; on its many quads the soft
+	// decoder leaves the families with white border rings to libapriltag
+	// (SoftTagDecoder::decode).
+	for (DecodedTag2D& d : soft.decode(out.view.gray, quads, nullptr, false)) out.reads.push_back(std::move(d));
 	return out;
 }
 

@@ -311,15 +311,21 @@ Quad orderedCorners(const Quad& q, int order)
 
 namespace
 {
-std::vector<float> sampleGrid(const cv::Mat& gray8, const cv::Mat* measured, const Quad& q, int cells, int first,
-							  int last)
+// Homography from grid coordinates (cells) to the image, for a quad that
+// outlines the grid square [first, last).
+cv::Matx33d gridToImage(const Quad& q, int first, int last)
 {
-	// Homography from grid coordinates (cells) to the image.
 	const float b0 = static_cast<float>(first), b1 = static_cast<float>(last);
 	const std::vector<cv::Point2f> src = {{b0, b0}, {b1, b0}, {b1, b1}, {b0, b1}};
 	std::vector<cv::Point2f> dst;
 	for (const auto& p : q) dst.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()));
-	const cv::Matx33d H = cv::getPerspectiveTransform(src, dst);
+	return cv::getPerspectiveTransform(src, dst);
+}
+
+std::vector<float> sampleGrid(const cv::Mat& gray8, const cv::Mat* measured, const Quad& q, int cells, int first,
+							  int last)
+{
+	const cv::Matx33d H = gridToImage(q, first, last);
 	const GrayPixels pixels(gray8);
 	std::vector<float> sample(static_cast<size_t>(cells * cells));
 	for (int r = 0; r < cells; r++)
@@ -347,6 +353,21 @@ std::vector<float> sampleGrid(const cv::Mat& gray8, const cv::Mat* measured, con
 	return sample;
 }
 }  // namespace
+
+Quad gridSquareIn(const Quad& q, int first, int last, int from, int to)
+{
+	if (first == from && last == to) return q;
+	const cv::Matx33d H = gridToImage(q, first, last);
+	const double f = from, t = to;
+	const std::array<cv::Vec3d, 4> grid = {cv::Vec3d(f, f, 1), cv::Vec3d(t, f, 1), cv::Vec3d(t, t, 1), cv::Vec3d(f, t, 1)};
+	Quad out;
+	for (int k = 0; k < 4; k++)
+	{
+		const cv::Vec3d p = H * grid[static_cast<size_t>(k)];
+		out[k] = Eigen::Vector2d(p[0] / p[2], p[1] / p[2]);
+	}
+	return out;
+}
 
 std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, int first, int last)
 {

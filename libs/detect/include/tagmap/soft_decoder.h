@@ -8,6 +8,8 @@
 // runner-up; the pattern check in 3D then confirms or rejects it.
 #pragma once
 
+#include <optional>
+
 #include <map>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -44,9 +46,18 @@ class SoftTagDecoder
 	 *  in TagDecoder. `measured` (optional, sampleMeasuredCells()): cells
 	 *  nothing was scanned in are left out of the correlation (erasures), as
 	 *  long as most of the code's cells were scanned; a tag partly in a
-	 *  scan's gap then reads on the cells its points show. */
+	 *  scan's gap then reads on the cells its points show.
+	 *
+	 *  A quad is an outline of a tag's border square, or, for a family whose
+	 *  border ring is white (tagStandard*, tagCircle*, tagCustom48h12), of
+	 *  the black ring around it or of the whole printed tag: dark-blob
+	 *  outlines trace those, and the frame every code prints tells which
+	 *  (the best one is read). `whiteBorders` false: those families are
+	 *  not read at all, as before they had outlines of their own (a scan's
+	 *  sensor view, whose many quads made the spinning bench with 8
+	 *  families 14 -> 28 ms a scan). */
 	std::vector<DecodedTag2D> decode(const cv::Mat& gray8, const std::vector<Quad>& quads,
-									 const cv::Mat* measured = nullptr) const;
+									 const cv::Mat* measured = nullptr, bool whiteBorders = true) const;
 
    private:
 	struct FamilyCodes;
@@ -58,6 +69,12 @@ class SoftTagDecoder
 	/** The best and runner-up code over all 8 orientations of `sample`,
 	 *  each compared on the measured cells only (erased cells are NaN). */
 	static BestCodes correlate(const FamilyCodes& fc, const std::vector<float>& sample);
+	/** Pearson correlation of the sample's frame cells (the same in every
+	 *  code) with the family's frame. */
+	static double frameCorrelation(const FamilyCodes& fc, const std::vector<float>& sample);
+	/** The read of `family` on `q`, if its frame and code are clear. */
+	std::optional<DecodedTag2D> read(const cv::Mat& gray8, const cv::Mat* measured, const Quad& q,
+									 const std::string& family, const FamilyCodes& fc) const;
 };
 
 }  // namespace tagmap

@@ -38,6 +38,12 @@ Quad orderedCorners(const Quad& q, int order);
  *  empty when part of the grid falls outside the image. */
 std::vector<float> sampleCells(const cv::Mat& gray8, const Quad& q, int cells, int first, int last);
 
+/** The square of grid cells [from, to) x [from, to) in the image, for a
+ *  quad `q` that outlines the square [first, last) x [first, last) (the
+ *  homography of sampleCells()): e.g. a tag's border square inside the
+ *  outline of the black ring around it. */
+Quad gridSquareIn(const Quad& q, int first, int last, int from, int to);
+
 /** sampleCells() from the pixels `measured` marks (CV_8UC1, non-zero: a
  *  point was scanned there; the image's size) only: a cell none of whose
  *  sample points is measured is NaN, an erasure (a gap in the scan the
