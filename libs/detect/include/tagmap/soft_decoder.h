@@ -8,11 +8,10 @@
 // runner-up; the pattern check in 3D then confirms or rejects it.
 #pragma once
 
-#include <optional>
-
 #include <map>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
