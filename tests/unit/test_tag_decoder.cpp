@@ -240,26 +240,23 @@ TEST(SoftTagDecoder, ReadsWhiteBorderFamiliesFromTheirDarkOutlines)
 				img.at<uint8_t>(r, c) = cv::saturate_cast<uint8_t>(img.at<uint8_t>(r, c) * 0.8 + 25 + noise(rng));
 		const TagBitmap bm = renderTagBitmap(family, 7);
 		const SoftTagDecoder decoder({family});
+		// The quad outlining the border square grown by `out` cells on every side.
+		const auto outline = [&](double out) {
+			const double b0 = pad + (bm.borderStart - out) * px, b1 = pad + (bm.borderStart + bm.borderCells + out) * px;
+			return Quad{Eigen::Vector2d(b0, b0), Eigen::Vector2d(b1, b0), Eigen::Vector2d(b1, b1), Eigen::Vector2d(b0, b1)};
+		};
 		// The quad as each square: the border (white), the black ring one
 		// cell out, the whole printed tag (inside the one-cell quiet zone).
 		for (int out : {0, 1, bm.borderStart - 1})
 		{
-			const double b0 = pad + (bm.borderStart - out) * px, b1 = pad + (bm.borderStart + bm.borderCells + out) * px;
-			const Quad quad = {Eigen::Vector2d(b0, b0), Eigen::Vector2d(b1, b0), Eigen::Vector2d(b1, b1),
-							   Eigen::Vector2d(b0, b1)};
-			const std::vector<DecodedTag2D> found = decoder.decode(img, {quad});
+			const std::vector<DecodedTag2D> found = decoder.decode(img, {outline(out)});
 			ASSERT_EQ(found.size(), 1u) << family << " outline " << out << " cells out";
 			EXPECT_EQ(found[0].id, 7) << family;
 			EXPECT_FALSE(found[0].mirrored);
 			for (int k = 0; k < 4; k++) EXPECT_LT((found[0].corners[k] - border[k]).norm(), 1e-6) << family;
 		}
 		// Half a ring off, the frame does not fit: no read.
-		const double b0 = pad + (bm.borderStart - 0.5) * px, b1 = pad + (bm.borderStart + bm.borderCells + 0.5) * px;
-		EXPECT_TRUE(decoder
-						.decode(img, {Quad{Eigen::Vector2d(b0, b0), Eigen::Vector2d(b1, b0), Eigen::Vector2d(b1, b1),
-										   Eigen::Vector2d(b0, b1)}})
-						.empty())
-			<< family;
+		EXPECT_TRUE(decoder.decode(img, {outline(0.5)}).empty()) << family;
 		// A scan's sensor view leaves these families to libapriltag.
 		EXPECT_TRUE(decoder.decode(img, {border}, nullptr, false).empty()) << family;
 	}
