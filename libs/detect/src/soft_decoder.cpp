@@ -33,6 +33,7 @@ struct SoftTagDecoder::FamilyCodes
 	 *  black ring just around it and the whole printed tag (its data cells
 	 *  outside that ring join the ring's dark blob). */
 	std::vector<std::pair<int, int>> outlines;
+	bool whiteBorder = false;  // the border ring is white (more outlines than the border square)
 	/** The fixed black ring: the border ring, or the ring around a white one. */
 	int ringStart = 0, ringCells = 0;
 	std::vector<int> informative;  // cells whose colour differs between codes
@@ -77,11 +78,11 @@ const SoftTagDecoder::FamilyCodes& SoftTagDecoder::codesOf(const std::string& fa
 	fc.cells = first.cells;
 	fc.borderStart = first.borderStart;
 	fc.borderCells = first.borderCells;
-	const bool whiteBorder = first.at(fc.borderStart, fc.borderStart) != 0;
-	fc.ringStart = whiteBorder ? fc.borderStart - 1 : fc.borderStart;
-	fc.ringCells = whiteBorder ? fc.borderCells + 2 : fc.borderCells;
+	fc.whiteBorder = first.at(fc.borderStart, fc.borderStart) != 0;
+	fc.ringStart = fc.whiteBorder ? fc.borderStart - 1 : fc.borderStart;
+	fc.ringCells = fc.whiteBorder ? fc.borderCells + 2 : fc.borderCells;
 	fc.outlines = {{fc.borderStart, fc.borderStart + fc.borderCells}};
-	if (whiteBorder) fc.outlines.insert(fc.outlines.end(), {{fc.ringStart, fc.ringStart + fc.ringCells}, {1, fc.cells - 1}});
+	if (fc.whiteBorder) fc.outlines.insert(fc.outlines.end(), {{fc.ringStart, fc.ringStart + fc.ringCells}, {1, fc.cells - 1}});
 	const size_t all = static_cast<size_t>(fc.cells * fc.cells);
 	// Every code's cells, one bit each, shared with the nearest-code search.
 	const std::vector<TagCellBits>& codes = codeCellBits(family);
@@ -285,7 +286,7 @@ std::vector<DecodedTag2D> SoftTagDecoder::decode(const cv::Mat& gray8, const std
 		for (const auto& family : families_)
 		{
 			const FamilyCodes& fc = codesOf(family);
-			if (fc.informative.empty() || (!whiteBorders && fc.outlines.size() > 1)) continue;
+			if (fc.informative.empty() || (!whiteBorders && fc.whiteBorder)) continue;
 			if (std::optional<DecodedTag2D> d = read(gray8, measured, q, family, fc)) out.push_back(std::move(*d));
 		}
 	dropRepeatedReads(out);
