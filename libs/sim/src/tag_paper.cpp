@@ -23,10 +23,23 @@ Eigen::Isometry3d printedTagPose(const TagSpec& spec, uint64_t seed, size_t tagI
 		std::uniform_real_distribution<double> u(-spec.jitterDeg * M_PI / 180, spec.jitterDeg * M_PI / 180);
 		const double rx = u(rng), ry = u(rng), rz = u(rng);
 		const bool tilt = hasBoard(spec);
-		T.linear() = T.linear() * (Eigen::AngleAxisd(rz, Eigen::Vector3d::UnitZ()) *
-								   Eigen::AngleAxisd(tilt ? ry : 0.0, Eigen::Vector3d::UnitY()) *
-								   Eigen::AngleAxisd(tilt ? rx : 0.0, Eigen::Vector3d::UnitX()))
-									  .toRotationMatrix();
+		const Eigen::Matrix3d turn = (Eigen::AngleAxisd(rz, Eigen::Vector3d::UnitZ()) *
+									  Eigen::AngleAxisd(tilt ? ry : 0.0, Eigen::Vector3d::UnitY()) *
+									  Eigen::AngleAxisd(tilt ? rx : 0.0, Eigen::Vector3d::UnitX()))
+										 .toRotationMatrix();
+		T.linear() = T.linear() * turn;
+		// A tilted board leans on the wall: its back corner nearest the wall
+		// touches it, none goes through it (turned about its centre alone, a
+		// 0.9 m board tilted 4 degrees sinks 3 cm into the wall, and the
+		// wall then hides part of the tag).
+		if (tilt)
+		{
+			double sunk = 0;
+			for (double x : {-0.5, 0.5})
+				for (double y : {-0.5, 0.5})
+					sunk = std::max(sunk, -(turn * Eigen::Vector3d(x * spec.boardWidth, y * spec.boardHeight, 0)).z());
+			T.translation() += spec.pose.linear().col(2) * sunk;
+		}
 	}
 	T.translate(Eigen::Vector3d(0, 0, (hasBoard(spec) ? spec.boardStandoff : 0.0) + spec.paperOffset));
 	return T;

@@ -53,7 +53,8 @@ struct TagSpec
 	double paperOffset = 1e-4;  // paper thickness/standoff from the wall, metres
 	/** Random turn (from the seed) about the tag centre, degrees: in-plane
 	 *  only for a tag stuck to a wall (it cannot tilt into it); about all
-	 *  three axes when it is mounted on a board. */
+	 *  three axes when it is mounted on a board, which then leans on the
+	 *  wall: lifted until its back corner nearest the wall touches it. */
 	double jitterDeg = 0;
 	/** Optional backing board (foam board) standing `boardStandoff` in front
 	 *  of the mounting surface; the paper is glued on its front. */
