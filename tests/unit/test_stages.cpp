@@ -138,6 +138,34 @@ TEST(IntensityGradient, NoiseThickerThanTheRadiusIsKeptOnlyByChance)
 							  edge.keptByChance.end()));
 }
 
+// A wall scanned from many ranges can carry intensity stripes that clear
+// the plain bar everywhere; a tag's black-white edge clears it by far more.
+// keptStrength (how far each kept point clears the bar) tells them apart:
+// the raised bar of splitOversizedClusters() keeps the step, not a stripe.
+TEST(IntensityGradient, StrengthSeparatesAStepFromStripes)
+{
+	Patch p = makePatch(0.002, 0.8, 0.005);
+	for (size_t k = 0; k < p.i.size(); k++)
+		if ((k / 100) / 3 % 2) p.i[k] += 0.08f;  // bands 3 rows (3 cm) wide
+	const IntensityGradientResult r = gradientOf(p);
+	ASSERT_EQ(r.keptStrength.size(), r.keptPoints.size());
+	constexpr int kRaised = IntensityGradientResult::kRaisedStrength;
+	size_t stripes = 0, stripesRaised = 0, step = 0, stepRaised = 0;
+	for (size_t k = 0; k < r.keptPoints.size(); k++)
+	{
+		const int column = static_cast<int>(r.keptPoints[k] % 100);
+		const bool onStep = column == 49 || column == 50, farFromStep = std::abs(column - 49.5) > 6;
+		EXPECT_GE(r.keptStrength[k], IntensityGradientResult::kStrengthSteps);  // every kept point clears the bar
+		if (onStep) step++, stepRaised += r.keptStrength[k] >= kRaised;
+		if (farFromStep) stripes++, stripesRaised += r.keptStrength[k] >= kRaised;
+	}
+	std::printf("stripes: %zu kept, %zu above the raised bar; step: %zu kept, %zu above\n", stripes, stripesRaised,
+				step, stepRaised);
+	EXPECT_GT(stripes, 500u);  // the stripes do clear the plain bar (their boundary rows)
+	EXPECT_EQ(stripesRaised, 0u);
+	EXPECT_GT(stepRaised, 0.9 * step);
+}
+
 TEST(CandidateFilter, PaperCriteria)
 {
 	CandidateFilterParams p;

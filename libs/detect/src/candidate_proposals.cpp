@@ -25,22 +25,34 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 	return clusters.size();
 }
 
-size_t splitOversizedClusters(const MapView& m, const std::vector<uint32_t>& keptByChance, double spacing,
+size_t splitOversizedClusters(const MapView& m, const IntensityGradientResult& edges, double spacing,
 							  const DerivedLengths& len, const PipelineParams& p, std::vector<Cluster>& clusters)
 {
-	if (keptByChance.empty()) return 0;
 	const CandidateFilterParams cf = filterParams(p);
-	std::vector<uint32_t> significant;
+	const std::vector<uint32_t>& kept = edges.keptPoints;
+	std::vector<uint32_t> significant, strong;
 	for (size_t k = 0, before = clusters.size(); k < before; k++)
 	{
 		if (!tooLargeForATag(clusters[k].box, len.candidateBand, cf)) continue;
 		for (uint32_t i : clusters[k].points)
-			if (!std::binary_search(keptByChance.begin(), keptByChance.end(), i)) significant.push_back(i);
+		{
+			// (With no point kept by chance, the significant ones are the cluster again.)
+			if (!edges.keptByChance.empty() &&
+				!std::binary_search(edges.keptByChance.begin(), edges.keptByChance.end(), i))
+				significant.push_back(i);
+			if (edges.keptStrength[std::lower_bound(kept.begin(), kept.end(), i) - kept.begin()] >= IntensityGradientResult::kRaisedStrength)
+				strong.push_back(i);
+		}
 	}
-	std::sort(significant.begin(), significant.end());
-	significant.erase(std::unique(significant.begin(), significant.end()), significant.end());
-	addClusters(m, significant, 1.0, spacing, p.clustering, clusters);
-	return significant.size();
+	size_t count = 0;
+	for (std::vector<uint32_t>* v : {&significant, &strong})
+	{
+		std::sort(v->begin(), v->end());
+		v->erase(std::unique(v->begin(), v->end()), v->end());
+		addClusters(m, *v, 1.0, spacing, p.clustering, clusters);
+		count += v->size();
+	}
+	return count;
 }
 
 size_t clusterSparseLevels(const MapView& m, IntensityGradientResult level, const DerivedLengths& len,

@@ -36,12 +36,14 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 
 // A cluster too large for any tag asked for may be a plain wall whose noise
 // passed the gradient's fixed bars (range noise thicker than r, strong
-// intensity noise), with a tag on it. Its points that beat chance
-// (IntensityGradientResult::keptByChance) are clustered again: the tag's
+// intensity noise, intensity stripes of a surface scanned from many
+// ranges), with a tag on it. Its points that beat chance
+// (IntensityGradientResult::keptByChance) are clustered again, and so are
+// its points whose slope clears a raised bar (keptStrength): the tag's
 // edges then stand apart. Only such clusters, which yield nothing as they
 // are, so no candidate of today is lost. Adds to `clusters`; returns the
 // points re-clustered.
-size_t splitOversizedClusters(const MapView& m, const std::vector<uint32_t>& keptByChance, double spacing,
+size_t splitOversizedClusters(const MapView& m, const IntensityGradientResult& edges, double spacing,
 							  const DerivedLengths& len, const PipelineParams& p, std::vector<Cluster>& clusters);
 
 // Density levels: where the map is sparser than its median (far from the

@@ -242,7 +242,14 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 		kDrop = 0,
 		kKeep = 1,
 		kSparse = 2,
-		kKeepByChance = 3  // kept, but noise explains as much with this many neighbours
+		kKeepByChance = 3,  // kept, but noise explains as much with this many neighbours
+		kStateMask = 3
+	};
+	// A kept point's strength |A| / cut, in the upper six bits: 1 at the
+	// bar, in steps of 1/kStrengthSteps, up to 63 steps.
+	constexpr double kStrengthSteps = IntensityGradientResult::kStrengthSteps;
+	const auto keptAs = [](uint8_t state, double strength) {
+		return static_cast<uint8_t>(state | (std::min(63, static_cast<int>(strength * kStrengthSteps)) << 2));
 	};
 	std::vector<uint8_t> keep(n, kDrop);
 	std::atomic<size_t> examined{0};
@@ -281,20 +288,27 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 				bool significant = true;
 				const double g =
 					gradientNorm(q, sorted, spans, spanCount, radius, p.minNeighbours, p.minExplained, &significant, cut);
-				keep[order[k]] = g < 0 ? kSparse : (g >= cut ? (significant ? kKeep : kKeepByChance) : kDrop);
+				if (g < 0) keep[order[k]] = kSparse;
+				else if (g >= cut) keep[order[k]] = keptAs(significant ? kKeep : kKeepByChance, g / cut);
 			}
 		}
 		if (progress) progress(examined += grid.voxelOffset(ve) - grid.voxelOffset(vb), n);
 	}, 256);
 	sorted = {};
 	size_t kept = 0;
-	for (size_t i = 0; i < n; i++) kept += keep[i] == kKeep || keep[i] == kKeepByChance;
+	for (size_t i = 0; i < n; i++) kept += (keep[i] & kStateMask) == kKeep || (keep[i] & kStateMask) == kKeepByChance;
 	out.keptPoints.reserve(kept);
+	out.keptStrength.reserve(kept);
 	for (size_t i = 0; i < n; i++)
 	{
-		if (keep[i] == kKeep || keep[i] == kKeepByChance) out.keptPoints.push_back(static_cast<uint32_t>(i));
-		if (keep[i] == kKeepByChance) out.keptByChance.push_back(static_cast<uint32_t>(i));
-		if (keep[i] == kSparse) out.sparsePoints.push_back(static_cast<uint32_t>(i));
+		const uint8_t state = keep[i] & kStateMask;
+		if (state == kKeep || state == kKeepByChance)
+		{
+			out.keptPoints.push_back(static_cast<uint32_t>(i));
+			out.keptStrength.push_back(static_cast<uint8_t>(keep[i] >> 2));
+		}
+		if (state == kKeepByChance) out.keptByChance.push_back(static_cast<uint32_t>(i));
+		if (state == kSparse) out.sparsePoints.push_back(static_cast<uint32_t>(i));
 	}
 	return out;
 }

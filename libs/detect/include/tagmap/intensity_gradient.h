@@ -35,6 +35,19 @@ struct IntensityGradientParams
 struct IntensityGradientResult
 {
 	std::vector<uint32_t> keptPoints;  // indices into the map, ascending
+	/** Per kept point, how far its slope clears the bar: |A| / cut in
+	 *  steps of 1 / kStrengthSteps (kStrengthSteps at the bar, at most 63).
+	 *  Where a whole surface clears the bar (intensity stripes of a map
+	 *  merged from many ranges, strong noise) a tag's edges clear it by
+	 *  more; the split of a cluster too large to be a tag uses it. */
+	std::vector<uint8_t> keptStrength;
+	static constexpr int kStrengthSteps = 8;
+	/** The raised bar, 2.25 x the plain one: a slope of 0.675 of the map's
+	 *  intensity spread across r, where an ideal black-white edge gives
+	 *  0.85 x its contrast. Ink on paper is about the widest contrast a map
+	 *  has; stripes of a surface merged from many ranges, or noise, that
+	 *  clear the plain bar over a whole wall rarely clear this one. */
+	static constexpr int kRaisedStrength = 18;
 	double intensitySpread = 0;  // p95 - p5 of the map's intensities
 	/** Points with fewer than minNeighbours within r: the map is sparser
 	 *  there than its median (far from the sensor, a fast pass). The
