@@ -34,15 +34,20 @@ size_t splitOversizedClusters(const MapView& m, const IntensityGradientResult& e
 	for (size_t k = 0, before = clusters.size(); k < before; k++)
 	{
 		if (!tooLargeForATag(clusters[k].box, len.candidateBand, cf)) continue;
+		const size_t strongBefore = strong.size();
 		for (uint32_t i : clusters[k].points)
 		{
 			// (With no point kept by chance, the significant ones are the cluster again.)
 			if (!edges.keptByChance.empty() &&
 				!std::binary_search(edges.keptByChance.begin(), edges.keptByChance.end(), i))
 				significant.push_back(i);
-			if (edges.keptStrength[std::lower_bound(kept.begin(), kept.end(), i) - kept.begin()] >= IntensityGradientResult::kRaisedStrength)
-				strong.push_back(i);
+			const size_t at = std::lower_bound(kept.begin(), kept.end(), i) - kept.begin();
+			if (edges.keptStrength[at] >= IntensityGradientResult::kRaisedStrength) strong.push_back(i);
 		}
+		// Most of it above the raised bar: high-contrast clutter (a facade's
+		// windows), not a wall of stripes or noise; its strong points would
+		// cluster into much the same boxes again, each decoded for nothing.
+		if (2 * (strong.size() - strongBefore) > clusters[k].points.size()) strong.resize(strongBefore);
 	}
 	size_t count = 0;
 	for (std::vector<uint32_t>* v : {&significant, &strong})

@@ -39,8 +39,8 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 // intensity noise, intensity stripes of a surface scanned from many
 // ranges), with a tag on it. Its points that beat chance
 // (IntensityGradientResult::keptByChance) are clustered again, and so are
-// its points whose slope clears a raised bar (keptStrength): the tag's
-// edges then stand apart. Only such clusters, which yield nothing as they
+// its points whose slope clears a raised bar (keptStrength) where they are
+// under half of it: the tag's edges then stand apart. Only such clusters, which yield nothing as they
 // are, so no candidate of today is lost. Adds to `clusters`; returns the
 // points re-clustered.
 size_t splitOversizedClusters(const MapView& m, const IntensityGradientResult& edges, double spacing,
