@@ -209,7 +209,7 @@ TEST(Pipeline, TagOnAWallNoisierThanTheRadiusIsFound)
 	p.tagSize = s.size;
 	const Detections found = Pipeline(p).detect(map);
 	for (const StageReport& st : found.stages)
-		if (st.name == "intensity_gradient" || st.name == "oversized_split")
+		if (st.name == "intensity_gradient" || st.name == "cluster_split")
 			std::printf("%s: %zu in, %zu out\n", st.name.c_str(), st.itemsIn, st.itemsOut);
 	ASSERT_EQ(found.tags.size(), 1u);
 	EXPECT_EQ(found.tags[0].id, s.id);

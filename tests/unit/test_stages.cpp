@@ -141,7 +141,7 @@ TEST(IntensityGradient, NoiseThickerThanTheRadiusIsKeptOnlyByChance)
 // A wall scanned from many ranges can carry intensity stripes that clear
 // the plain bar everywhere; a tag's black-white edge clears it by far more.
 // keptStrength (how far each kept point clears the bar) tells them apart:
-// the raised bar of splitOversizedClusters() keeps the step, not a stripe.
+// the raised bar of splitClusters() keeps the step, not a stripe.
 TEST(IntensityGradient, StrengthSeparatesAStepFromStripes)
 {
 	Patch p = makePatch(0.002, 0.8, 0.005);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -25,29 +26,32 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 	return clusters.size();
 }
 
-size_t splitOversizedClusters(const MapView& m, const IntensityGradientResult& edges, double spacing,
-							  const DerivedLengths& len, const PipelineParams& p, std::vector<Cluster>& clusters)
+size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, double spacing, const DerivedLengths& len,
+					 const PipelineParams& p, std::vector<Cluster>& clusters)
 {
 	const CandidateFilterParams cf = filterParams(p);
 	const std::vector<uint32_t>& kept = edges.keptPoints;
+	const double largestTag = cf.tagSize > 0 ? cf.tagSize : cf.maxTagSize;
 	std::vector<uint32_t> significant, strong;
 	for (size_t k = 0, before = clusters.size(); k < before; k++)
 	{
-		if (!tooLargeForATag(clusters[k].box, len.candidateBand, cf)) continue;
+		const Cluster& c = clusters[k];
+		// (With no point kept by chance, the significant ones are the cluster again.)
+		if (!edges.keptByChance.empty() && tooLargeForATag(c.box, len.candidateBand, cf))
+			for (uint32_t i : c.points)
+				if (!std::binary_search(edges.keptByChance.begin(), edges.keptByChance.end(), i)) significant.push_back(i);
+		// A box with a diagonal no larger than the largest tag's may be the
+		// tag itself; on a larger one the tag, if any, is a part of it.
+		if (std::hypot(c.box.extent.x(), c.box.extent.y()) <= std::sqrt(2.0) * largestTag) continue;
 		const size_t strongBefore = strong.size();
-		for (uint32_t i : clusters[k].points)
-		{
-			// (With no point kept by chance, the significant ones are the cluster again.)
-			if (!edges.keptByChance.empty() &&
-				!std::binary_search(edges.keptByChance.begin(), edges.keptByChance.end(), i))
-				significant.push_back(i);
-			const size_t at = std::lower_bound(kept.begin(), kept.end(), i) - kept.begin();
-			if (edges.keptStrength[at] >= IntensityGradientResult::kRaisedStrength) strong.push_back(i);
-		}
+		for (uint32_t i : c.points)
+			if (edges.keptStrength[std::lower_bound(kept.begin(), kept.end(), i) - kept.begin()] >=
+				IntensityGradientResult::kRaisedStrength)
+				strong.push_back(i);
 		// Most of it above the raised bar: high-contrast clutter (a facade's
 		// windows), not a wall of stripes or noise; its strong points would
-		// cluster into much the same boxes again, each decoded for nothing.
-		if (2 * (strong.size() - strongBefore) > clusters[k].points.size()) strong.resize(strongBefore);
+		// cluster into much the same boxes again, decoded for nothing.
+		if (2 * (strong.size() - strongBefore) > c.points.size()) strong.resize(strongBefore);
 	}
 	size_t count = 0;
 	for (std::vector<uint32_t>* v : {&significant, &strong})

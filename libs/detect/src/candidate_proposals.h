@@ -34,17 +34,21 @@ struct SensorViewReads
 size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double levelScale, double spacing,
 				   const ClusteringParams& p, std::vector<Cluster>& clusters);
 
-// A cluster too large for any tag asked for may be a plain wall whose noise
-// passed the gradient's fixed bars (range noise thicker than r, strong
-// intensity noise, intensity stripes of a surface scanned from many
-// ranges), with a tag on it. Its points that beat chance
-// (IntensityGradientResult::keptByChance) are clustered again, and so are
-// its points whose slope clears a raised bar (keptStrength) where they are
-// under half of it: the tag's edges then stand apart. Only such clusters, which yield nothing as they
-// are, so no candidate of today is lost. Adds to `clusters`; returns the
-// points re-clustered.
-size_t splitOversizedClusters(const MapView& m, const IntensityGradientResult& edges, double spacing,
-							  const DerivedLengths& len, const PipelineParams& p, std::vector<Cluster>& clusters);
+// A plain wall can pass the gradient's fixed bars all over (range noise
+// thicker than r, strong intensity noise, intensity stripes of a surface
+// scanned from many ranges) and cluster whole with a tag on it. Two splits
+// let the tag's edges stand apart:
+//  - a cluster too large for any tag asked for is clustered again on its
+//    points that beat chance (IntensityGradientResult::keptByChance);
+//  - a cluster wider than the largest tag's diagonal whose points mostly
+//    stay under the raised bar (stripes, noise) is clustered again on
+//    those that clear it (keptStrength, kRaisedStrength): a black-white
+//    edge does. A cluster mostly above it (a facade's windows) would only
+//    give its own boxes again.
+// New clusters are added; none is removed, so no candidate of today is
+// lost. Returns the points re-clustered.
+size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, double spacing, const DerivedLengths& len,
+					 const PipelineParams& p, std::vector<Cluster>& clusters);
 
 // Density levels: where the map is sparser than its median (far from the
 // sensor, a fast pass), a point has too few neighbours within r to fit a

@@ -106,8 +106,8 @@ std::vector<Candidate> proposeFromGradient(StageRunner& stage, const MapView& m,
 	stage.run("clustering", edges.keptPoints.size(), [&] {
 		return addClusters(m, edges.keptPoints, 1.0, len.spacing, p.clustering, clusters);
 	});
-	stage.run("oversized_split", edges.keptByChance.size(), [&] {
-		return splitOversizedClusters(m, edges, len.spacing, len, p, clusters);
+	stage.run("cluster_split", edges.keptPoints.size(), [&] {
+		return splitClusters(m, edges, len.spacing, len, p, clusters);
 	});
 	stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
 		return clusterSparseLevels(m, std::move(edges), len, p, threads, clusters);

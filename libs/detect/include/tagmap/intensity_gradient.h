@@ -39,7 +39,7 @@ struct IntensityGradientResult
 	 *  steps of 1 / kStrengthSteps (kStrengthSteps at the bar, at most 63).
 	 *  Where a whole surface clears the bar (intensity stripes of a map
 	 *  merged from many ranges, strong noise) a tag's edges clear it by
-	 *  more; the split of a cluster too large to be a tag uses it. */
+	 *  more; splitClusters() uses it. */
 	std::vector<uint8_t> keptStrength;
 	static constexpr int kStrengthSteps = 8;
 	/** The raised bar, 2.25 x the plain one: a slope of 0.675 of the map's
@@ -58,7 +58,7 @@ struct IntensityGradientResult
 	 *  range noise thicker than r (2 cm on a dense scan) or strong
 	 *  intensity noise, a plain wall passes the fixed bars and clusters
 	 *  with the tag on it into one box metres wide; without these points
-	 *  the tag's own edges stand apart (splitOversizedClusters). */
+	 *  the tag's own edges stand apart (splitClusters). */
 	std::vector<uint32_t> keptByChance;
 };
 
