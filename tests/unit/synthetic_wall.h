@@ -5,6 +5,7 @@
 
 #include <mrpt/maps/CPointsMapXYZI.h>
 
+#include <cmath>
 #include <random>
 
 #include "tagmap/tag_detection.h"
@@ -24,6 +25,10 @@ struct WallScene
 	double intensityScale = 1.0;
 	Eigen::Isometry3d T_G_wall = Eigen::Isometry3d::Identity();  // wall plane is its z = 0
 	double tagRotation = 0.0;  // in-plane, radians
+	/** Horizontal intensity bands over everything, `stripes` added on every
+	 *  other band of `stripePeriod / 2` metres: what a wall merged from scan
+	 *  lines at different ranges shows. 0: none. */
+	double stripes = 0.0, stripePeriod = 0.03;
 	unsigned seed = 1;
 };
 
@@ -48,7 +53,10 @@ inline mrpt::maps::CPointsMapXYZI makeWall(const WallScene& s, TagDetection& tru
 			double refl = 0.5;  // wall
 			if (std::abs(tx) < 0.5 * s.size + 2 * cell && std::abs(ty) < 0.5 * s.size + 2 * cell) refl = 0.85;  // paper
 			if (row >= 0 && col >= 0 && row < bm.cells && col < bm.cells) refl = bm.at(row, col) ? 0.85 : 0.06;
-			const double I = (refl + s.intensityNoise * n01(rng)) * s.intensityScale;
+			const double band = s.stripes > 0 && std::fmod(py + 100 * s.stripePeriod, s.stripePeriod) >= 0.5 * s.stripePeriod
+									? s.stripes
+									: 0.0;
+			const double I = (refl + band + s.intensityNoise * n01(rng)) * s.intensityScale;
 			const Eigen::Vector3d p = s.T_G_wall * Eigen::Vector3d(px, py, s.noise * n01(rng));
 			// insertPointRGB stores the R channel as the intensity, unclamped.
 			map.insertPointRGB(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()),

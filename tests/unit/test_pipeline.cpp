@@ -216,6 +216,32 @@ TEST(Pipeline, TagOnAWallNoisierThanTheRadiusIsFound)
 	EXPECT_LT(maxCornerError(found.tags[0], truth), 0.01);
 }
 
+// A wall whose intensity stripes (scan lines at different ranges) clear the
+// gradient's bar all over clusters whole with the tag on it, into a box
+// wider than any tag; its points that clear the raised bar are the tag's
+// black-white edges, which then stand apart (splitClusters). Every family
+// on, no size given.
+TEST(Pipeline, TagOnAStripedWallIsFound)
+{
+	WallScene s;
+	s.size = 0.3;
+	s.spacing = 0.01;
+	s.wall = 4.0;
+	s.stripes = 0.15;
+	s.stripePeriod = 0.04;
+	s.T_G_wall = wallPose(0.3, M_PI / 2, Eigen::Vector3d(3, 1, 1));
+	TagDetection truth;
+	const auto map = makeWall(s, truth);
+	const Detections found = Pipeline(PipelineParams{}).detect(map);
+	for (const StageReport& st : found.stages)
+		if (st.name == "clustering" || st.name == "cluster_split")
+			std::printf("%s: %zu in, %zu out\n", st.name.c_str(), st.itemsIn, st.itemsOut);
+	ASSERT_EQ(found.tags.size(), 1u);
+	EXPECT_EQ(found.tags[0].family, s.family);
+	EXPECT_EQ(found.tags[0].id, s.id);
+	EXPECT_LT(maxCornerError(found.tags[0], truth), 0.01);
+}
+
 TEST(Pipeline, PlainWallHasNoTags)
 {
 	WallScene s;

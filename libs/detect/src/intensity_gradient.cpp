@@ -249,7 +249,7 @@ IntensityGradientResult filterByIntensityGradient(const float* xs, const float* 
 	// bar, in steps of 1/kStrengthSteps, up to 63 steps.
 	constexpr double kStrengthSteps = IntensityGradientResult::kStrengthSteps;
 	const auto keptAs = [](uint8_t state, double strength) {
-		return static_cast<uint8_t>(state | (std::min(63, static_cast<int>(strength * kStrengthSteps)) << 2));
+		return static_cast<uint8_t>(state | (static_cast<int>(std::min(63.0, strength * kStrengthSteps)) << 2));
 	};
 	std::vector<uint8_t> keep(n, kDrop);
 	std::atomic<size_t> examined{0};
