@@ -32,6 +32,21 @@ Eigen::Isometry3d wallPose(double yaw, double pitch, const Eigen::Vector3d& t)
 	T.translation() = t;
 	return T;
 }
+
+// Detects `s`'s wall with `p` and expects its one tag, and nothing else;
+// prints the counts of `stage` and of cluster_split, which finds it.
+void expectOnlyTheWallsTag(const WallScene& s, const PipelineParams& p, const std::string& stage)
+{
+	TagDetection truth;
+	const Detections found = Pipeline(p).detect(makeWall(s, truth));
+	for (const StageReport& st : found.stages)
+		if (st.name == stage || st.name == "cluster_split")
+			std::printf("%s: %zu in, %zu out\n", st.name.c_str(), st.itemsIn, st.itemsOut);
+	ASSERT_EQ(found.tags.size(), 1u);
+	EXPECT_EQ(found.tags[0].family, s.family);
+	EXPECT_EQ(found.tags[0].id, s.id);
+	EXPECT_LT(maxCornerError(found.tags[0], truth), 0.01);
+}
 }  // namespace
 
 TEST(PointSpacing, MatchesGridSpacing)
@@ -203,17 +218,9 @@ TEST(Pipeline, TagOnAWallNoisierThanTheRadiusIsFound)
 	s.intensityNoise = 0.12;
 	s.wall = 1.2;
 	s.T_G_wall = wallPose(0.3, M_PI / 2, Eigen::Vector3d(3, 1, 1));
-	TagDetection truth;
-	const auto map = makeWall(s, truth);
 	PipelineParams p;
 	p.tagSize = s.size;
-	const Detections found = Pipeline(p).detect(map);
-	for (const StageReport& st : found.stages)
-		if (st.name == "intensity_gradient" || st.name == "cluster_split")
-			std::printf("%s: %zu in, %zu out\n", st.name.c_str(), st.itemsIn, st.itemsOut);
-	ASSERT_EQ(found.tags.size(), 1u);
-	EXPECT_EQ(found.tags[0].id, s.id);
-	EXPECT_LT(maxCornerError(found.tags[0], truth), 0.01);
+	expectOnlyTheWallsTag(s, p, "intensity_gradient");
 }
 
 // A wall whose intensity stripes (scan lines at different ranges) clear the
@@ -230,16 +237,7 @@ TEST(Pipeline, TagOnAStripedWallIsFound)
 	s.stripes = 0.15;
 	s.stripePeriod = 0.04;
 	s.T_G_wall = wallPose(0.3, M_PI / 2, Eigen::Vector3d(3, 1, 1));
-	TagDetection truth;
-	const auto map = makeWall(s, truth);
-	const Detections found = Pipeline(PipelineParams{}).detect(map);
-	for (const StageReport& st : found.stages)
-		if (st.name == "clustering" || st.name == "cluster_split")
-			std::printf("%s: %zu in, %zu out\n", st.name.c_str(), st.itemsIn, st.itemsOut);
-	ASSERT_EQ(found.tags.size(), 1u);
-	EXPECT_EQ(found.tags[0].family, s.family);
-	EXPECT_EQ(found.tags[0].id, s.id);
-	EXPECT_LT(maxCornerError(found.tags[0], truth), 0.01);
+	expectOnlyTheWallsTag(s, PipelineParams{}, "clustering");
 }
 
 TEST(Pipeline, PlainWallHasNoTags)
