@@ -286,10 +286,11 @@ TEST(Scenes, DenseNoisyWalkByOverSixSeeds)
 {
 	// share/scenes/dense_walk.yaml at 1.5 M points: a multi-pass map whose
 	// 1.8 cm range noise and per-pass intensity levels a fine image
-	// resolves. Measured over seeds 1-6: 10 of the 12 tags with the image
-	// edge capped at 200 pixels, 8 at 1200 (the cap before); never a false
-	// one. One seed's luck moves a tag either way, so the bar is the six
-	// seeds' total.
+	// resolves. Measured over seeds 1-6: 12 of the 12 tags since the
+	// simulator's tilted boards lean on the wall instead of sinking into it
+	// (10 before, with the image edge capped at 200 pixels; 8 at 1200);
+	// never a false one. One seed's luck moves a tag either way, so the bar
+	// is the six seeds' total, one below what was measured.
 	int found = 0, tags = 0;
 	for (uint64_t seed = 1; seed <= 6; seed++)
 	{
@@ -301,7 +302,7 @@ TEST(Scenes, DenseNoisyWalkByOverSixSeeds)
 		EXPECT_EQ(r.eval.falsePositives(), 0) << "seed " << seed;
 	}
 	EXPECT_EQ(tags, 12);
-	EXPECT_GE(found, 10);
+	EXPECT_GE(found, 11);
 }
 
 TEST(Scenes, SingleStationaryScanAtFourMetres)
