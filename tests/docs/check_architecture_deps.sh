@@ -41,13 +41,16 @@ done <<<"$rows"
 # Every library has a row.
 for f in "$src"/libs/*/CMakeLists.txt; do
   for t in $(tr '\n' ' ' <"$f" | grep -oE 'add_library\(\s*tagmap_[a-z_]+' | grep -oE 'tagmap_[a-z_]+'); do
-    echo "$rows" | grep -qE "^\| $t " || { echo "$t (${f#$src/}) has no row in ARCHITECTURE.md"; fail=1; }
+    # A here-string, not `echo | grep -q`: grep -q exits at the first row,
+    # and under pipefail echo's late write of the final newline then failed
+    # with SIGPIPE now and then (tagmap_core, the first row, "had no row").
+    grep -qE "^\| $t " <<<"$rows" || { echo "$t (${f#$src/}) has no row in ARCHITECTURE.md"; fail=1; }
   done
 done
 
 # Nothing links the plugin: it is loaded by MRPT apps, not linked.
 for f in $(grep -rlE 'tagmap_mrpt_plugin' --include=CMakeLists.txt --include='*.cmake' "$src"/libs "$src"/apps "$src"/tests || true); do
-  if tr '\n' ' ' <"$f" | grep -qE 'target_link_libraries\([^)]*tagmap_mrpt_plugin'; then
+  if grep -qE 'target_link_libraries\([^)]*tagmap_mrpt_plugin' <<<"$(tr '\n' ' ' <"$f")"; then
     echo "${f#$src/} links tagmap_mrpt_plugin"; fail=1
   fi
 done
