@@ -53,9 +53,9 @@ inline mrpt::maps::CPointsMapXYZI makeWall(const WallScene& s, TagDetection& tru
 			double refl = 0.5;  // wall
 			if (std::abs(tx) < 0.5 * s.size + 2 * cell && std::abs(ty) < 0.5 * s.size + 2 * cell) refl = 0.85;  // paper
 			if (row >= 0 && col >= 0 && row < bm.cells && col < bm.cells) refl = bm.at(row, col) ? 0.85 : 0.06;
-			const double band = s.stripes > 0 && std::fmod(py + 100 * s.stripePeriod, s.stripePeriod) >= 0.5 * s.stripePeriod
-									? s.stripes
-									: 0.0;
+			// Every other half period, counted from y = 0 (floor keeps the parity right below it).
+			const bool oddBand = s.stripes > 0 && static_cast<long>(std::floor(2 * py / s.stripePeriod)) % 2 != 0;
+			const double band = oddBand ? s.stripes : 0.0;
 			const double I = (refl + band + s.intensityNoise * n01(rng)) * s.intensityScale;
 			const Eigen::Vector3d p = s.T_G_wall * Eigen::Vector3d(px, py, s.noise * n01(rng));
 			// insertPointRGB stores the R channel as the intensity, unclamped.

@@ -26,7 +26,7 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 	return clusters.size();
 }
 
-size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, double spacing, const DerivedLengths& len,
+size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, const DerivedLengths& len,
 					 const PipelineParams& p, std::vector<Cluster>& clusters)
 {
 	const CandidateFilterParams cf = filterParams(p);
@@ -58,7 +58,7 @@ size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, dou
 	{
 		std::sort(v->begin(), v->end());
 		v->erase(std::unique(v->begin(), v->end()), v->end());
-		addClusters(m, *v, 1.0, spacing, p.clustering, clusters);
+		addClusters(m, *v, 1.0, len.spacing, p.clustering, clusters);
 		count += v->size();
 	}
 	return count;

@@ -47,7 +47,7 @@ size_t addClusters(const MapView& m, const std::vector<uint32_t>& kept, double l
 //    give its own boxes again.
 // New clusters are added; none is removed, so no candidate of today is
 // lost. Returns the points re-clustered.
-size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, double spacing, const DerivedLengths& len,
+size_t splitClusters(const MapView& m, const IntensityGradientResult& edges, const DerivedLengths& len,
 					 const PipelineParams& p, std::vector<Cluster>& clusters);
 
 // Density levels: where the map is sparser than its median (far from the

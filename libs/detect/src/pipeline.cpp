@@ -107,7 +107,7 @@ std::vector<Candidate> proposeFromGradient(StageRunner& stage, const MapView& m,
 		return addClusters(m, edges.keptPoints, 1.0, len.spacing, p.clustering, clusters);
 	});
 	stage.run("cluster_split", edges.keptPoints.size(), [&] {
-		return splitClusters(m, edges, len.spacing, len, p, clusters);
+		return splitClusters(m, edges, len, p, clusters);
 	});
 	stage.run("sparse_levels", edges.sparsePoints.size(), [&] {
 		return clusterSparseLevels(m, std::move(edges), len, p, threads, clusters);
